@@ -1,0 +1,73 @@
+#pragma once
+// Exact occluded α-intervals on band sample lines (method.md §3) and the per-point visibility
+// computation that fills the visibility cache.
+//
+// Robustness policy (stated once, docs/robustness.md): every decision — which side of a sample
+// plane a vertex lies on, whether a triangle's plane contains the calculation point, whether a
+// crossing lies on the sky half of the plane — is an exact predicate (floating-point filter with
+// a CGAL exact fallback). Constructions (crossing points, their angles α) are computed in
+// floating point in a canonical order per edge, so two triangles sharing an edge produce
+// bit-identical interval end points and a closed mesh never leaks light through shared edges.
+// The only float fast paths are conservative culls.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "geometry/band_frame.h"
+#include "geometry/scene.h"
+#include "geometry/visibility_cache.h"
+
+namespace skyband {
+
+struct VisibilityOptions {
+  // Initial number of equal-weight bands (method.md §2). Must be ≥ 1.
+  int bands = 32;
+  // Absolute SVF error target for adaptive band refinement; 0 disables refinement.
+  // The estimate: per band, (w/π)·|½(f(s0) + f(s1)) − f(centre)|·(f in uniform-sky units), i.e.
+  // the midpoint-vs-trapezoid disagreement; bands are split (in weight) until the sum ≤ tolerance.
+  double tolerance = 2.5e-4;
+  // Refinement never splits a band below total_weight / (bands · 2^max_refine_depth).
+  int max_refine_depth = 10;
+};
+
+// One calculation point.
+struct QueryPoint {
+  Vec3 position;  // metres
+  Vec3 normal;    // unit
+};
+
+// Visibility of one point. Thread-compatible: use one BandVisibility per thread.
+class BandVisibility {
+ public:
+  BandVisibility(const Scene& scene, const VisibilityOptions& options);
+  ~BandVisibility();
+  BandVisibility(const BandVisibility&) = delete;
+  BandVisibility& operator=(const BandVisibility&) = delete;
+
+  // Fills `out` with the point's bands and visible intervals.
+  void compute(const QueryPoint& q, VisibilityCache::PointResult& out);
+
+  // Visible α-intervals of the single sample half-plane at δ (any δ in [0, π]) through the point,
+  // clipped to [0, π]; used for exact sun-shadow tests and reference computations.
+  void visible_on_plane(const QueryPoint& q, double delta_rad, std::vector<VisibleInterval>& out);
+
+  // Is the direction (unit, ω·z ≥ 0 and ω·n > 0) unoccluded from the point? Exact shadow test.
+  bool direction_visible(const QueryPoint& q, const Vec3& direction);
+
+  // Statistics of the last compute() (for benchmarks).
+  std::size_t last_triangle_tests() const;
+  std::size_t last_plane_count() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+// Computes the cache for many points with `threads` workers (0 = all cores). The result is
+// bit-identical whatever the thread count. `progress(done, total)` is called from one thread.
+VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
+                                   const VisibilityOptions& options, int threads = 0,
+                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace skyband

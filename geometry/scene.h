@@ -1,0 +1,64 @@
+#pragma once
+// The scene: a triangle soup plus a bounding-volume hierarchy over it. Built once, read-only
+// afterwards and safe to share between threads.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "geometry/triangle_soup.h"
+#include "geometry/vec3.h"
+
+namespace skyband {
+
+struct Aabb {
+  Vec3 lo{+1e300, +1e300, +1e300};
+  Vec3 hi{-1e300, -1e300, -1e300};
+  void extend(const Vec3& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+  void extend(const Aabb& b) { lo = lo.cwiseMin(b.lo); hi = hi.cwiseMax(b.hi); }
+  Vec3 centre() const { return 0.5 * (lo + hi); }
+  bool empty() const { return lo.x() > hi.x(); }
+};
+
+// BVH node: leaves hold [first, first + count) of Scene::bvh_triangle_order().
+struct BvhNode {
+  Aabb box;
+  std::uint32_t first = 0;   // leaf: first triangle slot; inner: index of the left child
+  std::uint32_t count = 0;   // leaf: number of triangles (> 0); inner: 0 (right child = left + 1)
+};
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;  // need not be unit
+  double t_min = 0;
+  double t_max = 1e300;
+};
+
+struct RayHit {
+  double t = 0;
+  std::uint32_t triangle = 0;
+  double u = 0, v = 0;  // barycentrics of vertices 1 and 2
+};
+
+class Scene {
+ public:
+  explicit Scene(TriangleSoup soup);
+
+  const TriangleSoup& soup() const { return soup_; }
+  const Aabb& bounds() const { return nodes_.empty() ? empty_box_ : nodes_[0].box; }
+  const std::vector<BvhNode>& bvh_nodes() const { return nodes_; }
+  const std::vector<std::uint32_t>& bvh_triangle_order() const { return order_; }
+  // Geometric (unnormalised) normal of triangle t by its winding: (v1 − v0) × (v2 − v0).
+  Vec3 triangle_normal(std::uint32_t t) const;
+
+  // Closest hit along the ray (watertight ray/triangle test), or nothing.
+  std::optional<RayHit> intersect(const Ray& ray) const;
+
+ private:
+  void build();
+  TriangleSoup soup_;
+  std::vector<BvhNode> nodes_;
+  std::vector<std::uint32_t> order_;
+  Aabb empty_box_;
+};
+
+}  // namespace skyband

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages skyband builds against, only those that are missing.
+# Why each one is in docs/dependencies.md (and the README).
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev      # exact predicates, polygon triangulation
+  libeigen3-dev                           # small fixed-size vectors and matrices
+  libopenmesh-dev                         # mesh readers (OBJ, OFF, PLY, STL)
+  libopenexr-dev                          # HDR output
+  libpng-dev                              # tone-mapped previews
+  libboost-test-dev                       # Boost.Test
+  libtbb-dev                              # parallel_for over query points and pixels
+  libcli11-dev                            # command-line parsing
+  nlohmann-json3-dev                      # --json output, reports
+  libtomlplusplus-dev                     # scene files
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
