@@ -1,0 +1,41 @@
+#pragma once
+// Precomputed sky radiance for one sun position, for fast look-ups (sky integrals, images).
+//
+// The table stores the three smooth parts of the radiance (SkyRadianceParts: Rayleigh and aerosol
+// in-scattering without their phase functions, and the multiple-scattering term) on a grid of
+// (view altitude, azimuth relative to the sun) and applies the Rayleigh and Cornette–Shanks phase
+// functions exactly at look-up time, so the sharp aureole around the sun is not interpolated
+// (Bruneton & Neyret 2008 §4 store Rayleigh and Mie separately for the same reason).
+// Only relative azimuth 0..π is stored: the sky is symmetric about the sun's vertical plane.
+// The altitude axis is quadratic (altitude = π/2·u²) so that the steep brightening of the last
+// degrees above the horizon is resolved. Interpolation: bicubic Catmull–Rom in (u, azimuth).
+// The measured interpolation error against Atmosphere::sky_radiance is in sky_table_test.cpp.
+#include <vector>
+
+#include "geometry/vec3.h"
+#include "lighting/atmosphere.h"
+#include "lighting/spectrum.h"
+
+namespace skyband {
+
+class SkyTable {
+ public:
+  SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, ScatteringOrders orders);
+  Spectrum radiance(const Vec3& view_dir) const;                         // interpolated
+  void radiance_into(const Vec3& view_dir, Spectrum& out) const;         // no allocation, hot path
+  const Vec3& sun_direction() const;
+
+  static constexpr int kAltitudeNodes = 48;  // u = 0..1 (horizon..zenith)
+  static constexpr int kAzimuthNodes = 48;   // relative azimuth 0..π
+
+ private:
+  const SkyRadianceParts& node(int i_alt, int i_az) const {
+    return nodes_[static_cast<std::size_t>(i_alt * kAzimuthNodes + i_az)];
+  }
+  Vec3 sun_dir_;
+  double sun_azimuth_rad_ = 0;
+  double aerosol_g_ = 0;
+  std::vector<SkyRadianceParts> nodes_;
+};
+
+}  // namespace skyband
