@@ -1,0 +1,64 @@
+#include "lighting/cook_torrance.h"
+
+#include <cmath>
+
+#include "lighting/beckmann.h"
+
+namespace skyband {
+
+bool microfacet_cosines(const Vec3& n, const Vec3& l, const Vec3& v, MicrofacetCosines& c) {
+  c.n_dot_l = n.dot(l);
+  c.n_dot_v = n.dot(v);
+  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return false;
+  const Vec3 sum = l + v;
+  const double len = sum.norm();
+  if (!(len > 0.0)) return false;
+  c.n_dot_h = n.dot(sum) / len;
+  c.v_dot_h = v.dot(sum) / len;
+  return true;
+}
+
+double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale) {
+  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return 0.0;
+  const double d = beckmann_d(c.n_dot_h, roughness_m);
+  const double g = cook_torrance_g(c.n_dot_h, c.n_dot_v, c.n_dot_l, c.v_dot_h);
+  const double fs = d * g / (4.0 * c.n_dot_l * c.n_dot_v);
+  return paper_scale ? kPaperScale * fs : fs;
+}
+
+double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roughness_m, double fresnel,
+                        bool paper_scale) {
+  MicrofacetCosines c;
+  if (!microfacet_cosines(n, l, v, c)) return 0.0;
+  return fresnel * cook_torrance_lobe(c, roughness_m, paper_scale);
+}
+
+double cook_torrance_albedo(double roughness_m, double theta_v_rad, int nodes, bool paper_scale) {
+  // Frame: N = z, V in the xz-plane.
+  const Vec3 n(0, 0, 1);
+  const Vec3 v(std::sin(theta_v_rad), 0, std::cos(theta_v_rad));
+  const double n_dot_v = v.z();
+  if (n_dot_v <= 0.0 || nodes <= 0) return 0.0;
+  double sum = 0;
+  for (int i = 0; i < nodes; ++i) {
+    const double w = (i + 0.5) / nodes;
+    const double tan_h = roughness_m * std::sqrt(-std::log1p(-w));
+    const double cos_h = 1.0 / std::sqrt(1.0 + tan_h * tan_h);
+    const double sin_h = tan_h * cos_h;
+    for (int j = 0; j < nodes; ++j) {
+      const double phi = 2.0 * kPi * (j + 0.5) / nodes;
+      const Vec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+      const double v_dot_h = v.dot(h);
+      if (v_dot_h <= 0.0) continue;
+      const Vec3 l = 2.0 * v_dot_h * h - v;  // mirror of V about the facet normal
+      const double n_dot_l = l.z();
+      if (n_dot_l <= 0.0) continue;
+      const double g = cook_torrance_g(cos_h, n_dot_v, n_dot_l, v_dot_h);
+      sum += g * v_dot_h / (n_dot_v * cos_h);
+    }
+  }
+  const double albedo = sum / (static_cast<double>(nodes) * nodes);
+  return paper_scale ? kPaperScale * albedo : albedo;
+}
+
+}  // namespace skyband
