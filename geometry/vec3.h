@@ -1,6 +1,7 @@
 #pragma once
 // Small fixed-size vector types used everywhere. World frame: metres, z up, x east, y north.
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 
 namespace skyband {
 
