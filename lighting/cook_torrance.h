@@ -13,6 +13,7 @@
 // The Fresnel factor is supplied by the caller (a scalar or a spectrum): everything here is the
 // Fresnel-free, wavelength-independent part.
 #include "geometry/vec3.h"
+#include "lighting/fresnel.h"
 
 namespace skyband {
 
@@ -41,5 +42,17 @@ double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roug
 // L crosses the horizon, so the error falls like 1/nodes (≈ 3·10⁻⁴ at nodes = 600 for the cases
 // in cook_torrance_test).
 double cook_torrance_albedo(double roughness_m, double theta_v_rad, int nodes = 600, bool paper_scale = false);
+
+// What the sky integrals need of a material's specular term s·f_s: roughness, weight s, spectral
+// Fresnel table (not owned; must outlive the lobe) and the scale convention.
+struct SpecularLobe {
+  double roughness_m = 0.3;
+  double weight = 1.0;                  // s in R = s·R_s + d·R_d (Cook & Torrance 1982)
+  const FresnelTable* fresnel = nullptr;  // nullptr: F = 1 (white furnace)
+  bool paper_scale = false;
+
+  // s·(D_n G / 4(N·L)(N·V))·(4 if paper_scale): the wavelength-independent factor, sr⁻¹.
+  double factor(const MicrofacetCosines& c) const { return weight * cook_torrance_lobe(c, roughness_m, paper_scale); }
+};
 
 }  // namespace skyband
