@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "geometry/input_error.h"
 #include "lighting/phase_functions.h"
@@ -94,6 +95,34 @@ void SkyTable::radiance_into(const Vec3& view_dir, Spectrum& out) const {
   }
   // Catmull–Rom can undershoot slightly where the data bend sharply; radiance is never negative.
   for (int q = 0; q < kSpectrumSamples; ++q) out[q] = std::max(0.0, out[q]);
+}
+
+Spectrum SkyTable::horizontal_irradiance() const {
+  // Gauss–Legendre nodes: 4 panels × 8 in μ = cos θ ∈ [0, 1], 8 panels × 8 in φ ∈ [0, π].
+  static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+  static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  auto nodes = [](double a, double b, int panels, std::vector<double>& x, std::vector<double>& w) {
+    const double h = (b - a) / panels;
+    for (int p = 0; p < panels; ++p)
+      for (int k = 0; k < 4; ++k)
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          x.push_back(a + (p + 0.5) * h + sgn * 0.5 * h * x8[k]);
+          w.push_back(0.5 * h * w8[k]);
+        }
+  };
+  std::vector<double> mu, wmu, phi, wphi;
+  nodes(0.0, 1.0, 4, mu, wmu);
+  nodes(0.0, kPi, 8, phi, wphi);
+  Spectrum e, l;
+  for (std::size_t a = 0; a < mu.size(); ++a) {
+    const double st = std::sqrt(std::max(0.0, 1.0 - mu[a] * mu[a]));
+    for (std::size_t b = 0; b < phi.size(); ++b) {
+      const double az = sun_azimuth_rad_ + phi[b];
+      radiance_into(Vec3(std::sin(az) * st, std::cos(az) * st, mu[a]), l);
+      e += l * (2.0 * mu[a] * wmu[a] * wphi[b]);  // ×2: the mirror half φ ∈ [π, 2π]
+    }
+  }
+  return e;
 }
 
 }  // namespace skyband

@@ -24,6 +24,10 @@ class SkyTable {
   Spectrum radiance(const Vec3& view_dir) const;                         // interpolated
   void radiance_into(const Vec3& view_dir, Spectrum& out) const;         // no allocation, hot path
   const Vec3& sun_direction() const;
+  // Diffuse (sky-only) spectral irradiance on an unobstructed horizontal plane, W·m⁻²·nm⁻¹:
+  // E = ∫_{upper hemisphere} L(ω) cos θ dω, by Gauss–Legendre quadrature of the table
+  // (32 nodes in cos θ × 64 in relative azimuth on [0, π], doubled by symmetry).
+  Spectrum horizontal_irradiance() const;
 
   static constexpr int kAltitudeNodes = 48;  // u = 0..1 (horizon..zenith)
   static constexpr int kAzimuthNodes = 48;   // relative azimuth 0..π
