@@ -1,0 +1,149 @@
+#include "lighting/sky_lut.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "geometry/input_error.h"
+#include "geometry/sky_integral.h"
+
+namespace skyband {
+
+namespace {
+// 4-point Gauss–Legendre on [−1, 1].
+constexpr double kXg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+constexpr double kWg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+}  // namespace
+
+SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky,
+               int alpha_cells)
+    : lines_(line_deltas_rad.size()), cells_(alpha_cells), deltas_(line_deltas_rad.begin(), line_deltas_rad.end()) {
+  if (alpha_cells < 1) throw InputError("sky look-up table: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
+  step_rad_ = kPi / cells_;
+  table_.assign(lines_ * static_cast<std::size_t>(cells_ + 1) * kSpectrumSamples, 0.0);
+  Spectrum radiance;
+  for (std::size_t l = 0; l < lines_; ++l) {
+    const double delta = deltas_[l];
+    Spectrum acc;  // E_l at the current node
+    double* out = &table_[l * static_cast<std::size_t>(cells_ + 1) * kSpectrumSamples];
+    std::copy(acc.v.begin(), acc.v.end(), out);
+    for (int j = 0; j < cells_; ++j) {
+      const double mid = (j + 0.5) * step_rad_;
+      for (int g = 0; g < 4; ++g) {
+        const double a = mid + 0.5 * step_rad_ * kXg[g];
+        const double s = std::sin(a);
+        sky(frame.direction(a, delta), radiance);
+        const double k = 0.5 * step_rad_ * kWg[g] * s * s;
+        for (int i = 0; i < kSpectrumSamples; ++i) acc[i] += k * radiance[i];
+      }
+      std::copy(acc.v.begin(), acc.v.end(), out + static_cast<std::size_t>(j + 1) * kSpectrumSamples);
+    }
+  }
+}
+
+void SkyLut::locate(double alpha_rad, int& node, double& t) const {
+  const double x = std::clamp(alpha_rad, 0.0, kPi) / step_rad_;
+  node = std::min(static_cast<int>(x), cells_ - 1);
+  t = std::min(x - node, 1.0);
+}
+
+void SkyLut::primitive(std::size_t line, double alpha_rad, Spectrum& out) const {
+  int j;
+  double t;
+  locate(alpha_rad, j, t);
+  const double* a = row(line, j);
+  const double* b = a + kSpectrumSamples;
+  for (int i = 0; i < kSpectrumSamples; ++i) out[i] = a[i] + t * (b[i] - a[i]);
+}
+
+void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, Spectrum& acc) const {
+  int j0, j1;
+  double t0, t1;
+  locate(alpha0_rad, j0, t0);
+  locate(alpha1_rad, j1, t1);
+  const double* a0 = row(line, j0);
+  const double* b0 = a0 + kSpectrumSamples;
+  const double* a1 = row(line, j1);
+  const double* b1 = a1 + kSpectrumSamples;
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+}
+
+Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut) {
+  Spectrum e;
+  const std::size_t n = std::min(v.band_count(), lut.line_count());
+  for (std::size_t b = 0; b < n; ++b) {
+    const double w = v.band_weight(b);
+    for (const VisibleInterval& iv : v.visible(b))
+      lut.add_interval(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, e);
+  }
+  return e;
+}
+
+SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum)
+    : sky_(std::move(sky)), alpha_cells_(alpha_cells), quantum_(frame_quantum) {
+  if (!(frame_quantum > 0)) throw InputError("sky look-up table cache: frame quantum must be > 0, got " + std::to_string(frame_quantum));
+  if (alpha_cells < 1) throw InputError("sky look-up table cache: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
+}
+
+std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) {
+  const BandFrame& f = v.frame();
+  std::int64_t q[6];
+  for (int i = 0; i < 3; ++i) {
+    q[i] = std::llround(f.normal[i] / quantum_);
+    q[3 + i] = std::llround(f.x[i] / quantum_);
+  }
+  // FNV-1a over the quantised frame and the bands' δ bits (no allocation on the hit path).
+  std::uint64_t hash = 1469598103934665603ull;
+  auto mix = [&hash](std::uint64_t x) {
+    for (int k = 0; k < 8; ++k) {
+      hash ^= (x >> (8 * k)) & 0xffu;
+      hash *= 1099511628211ull;
+    }
+  };
+  for (std::int64_t x : q) mix(static_cast<std::uint64_t>(x));
+  mix(v.band_count());
+  for (std::size_t b = 0; b < v.band_count(); ++b) mix(std::bit_cast<std::uint32_t>(v.band(b).delta_rad));
+
+  auto matches = [&](const Entry& e) {
+    if (!std::equal(q, q + 6, e.q) || e.deltas.size() != v.band_count()) return false;
+    for (std::size_t b = 0; b < v.band_count(); ++b)
+      if (std::bit_cast<std::uint32_t>(e.deltas[b]) != std::bit_cast<std::uint32_t>(v.band(b).delta_rad)) return false;
+    return true;
+  };
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = map_.find(hash);
+    if (it != map_.end())
+      for (const Entry& e : it->second)
+        if (matches(e)) return e.lut;
+  }
+  // Build outside the lock (other threads keep shading); the first insert wins.
+  Entry e;
+  std::copy(q, q + 6, e.q);
+  std::vector<double> deltas(v.band_count());
+  e.deltas.resize(v.band_count());
+  for (std::size_t b = 0; b < v.band_count(); ++b) {
+    e.deltas[b] = v.band(b).delta_rad;
+    deltas[b] = v.band(b).delta_rad;
+  }
+  e.lut = std::make_shared<const SkyLut>(f, deltas, sky_, alpha_cells_);
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto& bucket = map_[hash];
+  for (const Entry& other : bucket)
+    if (matches(other)) return other.lut;
+  bucket.push_back(std::move(e));
+  ++count_;
+  return bucket.back().lut;
+}
+
+std::size_t SkyLutCache::size() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return count_;
+}
+
+Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, SkyLutCache& cache) {
+  return diffuse_sky_irradiance(v, *cache.lut_for(v));
+}
+
+}  // namespace skyband
