@@ -29,6 +29,16 @@ struct VisibilityOptions {
   double tolerance = 2.5e-4;
   // Refinement never splits a band below total_weight / (bands · 2^max_refine_depth).
   int max_refine_depth = 10;
+  // Calculation points are evaluated this far in front of their surface (along the normal), so
+  // that a point given on a surface in rounded decimal coordinates is not hidden by that surface.
+  double surface_offset_m = 1e-6;
+  // Parts of the scene seen only within this angle of the pencil axis (α < tail or α > π − tail)
+  // are not traversed: cosine weighting makes their largest possible effect on the SVF
+  // (4/(3π))·W·tail³/2 ≤ 0.43·tail³ = 4.3e-7 at the default (docs/geometry.md); 0 = exhaustive.
+  double axis_tail_rad = 0.01;
+  // false: test every triangle against every plane (the naive reference the BVH and occlusion
+  // culling are checked against; with axis_tail_rad = 0 both give bit-identical intervals).
+  bool accelerate = true;
 };
 
 // One calculation point.

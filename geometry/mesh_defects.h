@@ -26,8 +26,10 @@ struct MeshDefects {
   std::size_t duplicate_triangles = 0;              // same welded vertex set as an earlier triangle
   std::size_t boundary_edges = 0;                   // edges with exactly 1 triangle
   std::size_t non_manifold_edges = 0;               // edges with more than 2 triangles
-  std::size_t inconsistently_oriented_edges = 0;    // edges traversed twice or more in one direction
-  std::size_t non_manifold_vertices = 0;            // triangles around the vertex form > 1 fan
+  std::size_t inconsistently_oriented_edges = 0;    // edges of 2 triangles, both in one direction
+  // Triangles around the vertex form more than one fan (linked through shared edges); only
+  // triangles with three distinct welded vertices take part.
+  std::size_t non_manifold_vertices = 0;
 
   bool any() const;
   // e.g. "3 duplicate positions, 4 zero-area triangles, 3 boundary edges"; "no defects" if none.

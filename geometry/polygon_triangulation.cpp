@@ -1,6 +1,7 @@
 #include "geometry/polygon_triangulation.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <Eigen/Geometry>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>

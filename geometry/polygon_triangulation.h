@@ -23,6 +23,7 @@
 // such pieces have (near) zero area or overlap and the result says so.
 #include <array>
 #include <cstdint>
+#include <ostream>
 #include <span>
 #include <vector>
 
@@ -36,6 +37,17 @@ enum class PolygonTriangulationMethod {
   kFanZeroArea,          // fan: zero Newell normal or collinear projection (zero-area polygon)
   kFanSelfIntersecting,  // fan: the projected ring crosses itself
 };
+
+inline const char* to_string(PolygonTriangulationMethod m) {
+  switch (m) {
+    case PolygonTriangulationMethod::kTriangle: return "triangle";
+    case PolygonTriangulationMethod::kConstrainedDelaunay: return "constrained Delaunay";
+    case PolygonTriangulationMethod::kFanZeroArea: return "fan (zero area)";
+    case PolygonTriangulationMethod::kFanSelfIntersecting: return "fan (self-crossing outline)";
+  }
+  return "?";
+}
+inline std::ostream& operator<<(std::ostream& os, PolygonTriangulationMethod m) { return os << to_string(m); }
 
 struct PolygonTriangulation {
   std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into `positions`

@@ -1,0 +1,487 @@
+// Exact band visibility (method.md §2–3). See band_visibility.h for the robustness policy and
+// docs/geometry.md for the design (pencil of planes, BVH occlusion culling, refinement).
+#include "geometry/band_visibility.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "geometry/exact_sign.h"
+#include "geometry/pseudo_angle.h"
+#include "geometry/sky_integral.h"
+
+namespace skyband {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using KPoint = Kernel::Point_3;
+
+// An occluded interval on a sample line, in pseudo-angle units (pseudo_angle.h): [0, 2] ↔ [0, π].
+struct Span {
+  double lo, hi;
+};
+
+// A sample half-plane through the point: all directions cos α·x + sin α·u, u = cos δ·h + sin δ·z.
+struct Plane {
+  double s = 0;            // weight coordinate sin(δ − β)
+  double delta = 0;        // radians
+  double pdelta = 0;       // pseudo-angle of δ in the (h, z) plane
+  double cosd = 1, sind = 0;
+  Vec3 m;                  // plane normal −sin δ·h + cos δ·z (world frame, rounded once: *the* plane)
+  std::vector<Span> occluded;  // sorted, disjoint, merged
+  double line_integral = 0;    // ∫_visible sin²α dα (uniform sky, for refinement)
+};
+
+struct BandState {
+  double s0, s1;
+  int e0, c, e1;  // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
+  double error;   // estimated |midpoint error| in SVF units
+  int depth;
+};
+
+// Inserts [lo, hi] into a sorted merged list (touching intervals merge: shared end points of
+// triangles sharing an edge are bit-identical, so a closed surface leaves no gap).
+void insert_span(std::vector<Span>& v, double lo, double hi) {
+  auto first = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
+  auto last = first;
+  while (last != v.end() && last->lo <= hi) {
+    lo = std::min(lo, last->lo);
+    hi = std::max(hi, last->hi);
+    ++last;
+  }
+  if (first == last) {
+    v.insert(first, Span{lo, hi});
+  } else {
+    *first = Span{lo, hi};
+    v.erase(first + 1, last);
+  }
+}
+
+bool covered(const std::vector<Span>& v, double lo, double hi) {
+  auto it = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
+  return it != v.end() && it->lo <= lo && it->hi >= hi;
+}
+
+}  // namespace
+
+struct BandVisibility::Impl {
+  const Scene& scene;
+  VisibilityOptions opt;
+  double tail_p = 0;  // pseudo-angle of the axis tail (see VisibilityOptions::axis_tail_rad)
+
+  // Per-point state (reused between points: no allocation in steady state).
+  Vec3 p;
+  BandFrame frame;
+  Eigen::Matrix3d local_from_world;   // rows x, h, z
+  Eigen::Matrix3d abs_local_from_world;
+  std::vector<Plane> planes;
+  std::size_t plane_count = 0;
+  std::vector<int> active;            // indices of the planes of this pass, sorted by pdelta
+  std::vector<double> active_keys;    // their pdelta
+  std::vector<std::uint32_t> stack;
+  std::size_t triangle_tests = 0;
+  std::size_t total_planes = 0;
+
+  Impl(const Scene& s, const VisibilityOptions& o) : scene(s), opt(o) {
+    tail_p = pseudo_angle(std::cos(opt.axis_tail_rad), std::sin(opt.axis_tail_rad));
+  }
+
+  void begin_point(const QueryPoint& q) {
+    frame = BandFrame::make(q.normal);
+    p = q.position + opt.surface_offset_m * frame.normal;
+    local_from_world.row(0) = frame.x.transpose();
+    local_from_world.row(1) = frame.h.transpose();
+    local_from_world.row(2) = frame.z.transpose();
+    abs_local_from_world = local_from_world.cwiseAbs();
+    plane_count = 0;
+    triangle_tests = 0;
+  }
+
+  int add_plane(double s, double delta) {
+    if (plane_count == planes.size()) planes.emplace_back();
+    Plane& pl = planes[plane_count];
+    pl.s = s;
+    pl.delta = delta;
+    pl.cosd = std::cos(delta);
+    pl.sind = std::sin(delta);
+    pl.pdelta = pseudo_angle(pl.cosd, pl.sind);
+    pl.m = -pl.sind * frame.h + pl.cosd * frame.z;
+    pl.occluded.clear();
+    pl.line_integral = 0;
+    return static_cast<int>(plane_count++);
+  }
+
+  // Evaluates the planes [first, plane_count) in one BVH traversal.
+  void run_pass(std::size_t first) {
+    active.clear();
+    for (std::size_t i = first; i < plane_count; ++i) active.push_back(static_cast<int>(i));
+    std::sort(active.begin(), active.end(), [&](int a, int b) { return planes[a].pdelta < planes[b].pdelta; });
+    active_keys.clear();
+    for (int i : active) active_keys.push_back(planes[i].pdelta);
+    total_planes += active.size();
+    if (opt.accelerate) {
+      traverse();
+    } else {
+      const int n = static_cast<int>(active.size());
+      for (std::uint32_t t = 0; t < scene.soup().triangles.size(); ++t) process_triangle(t, 0, n);
+    }
+    for (int i : active) finish_plane(planes[i]);
+  }
+
+  // Range [j0, j1) of active planes whose pseudo-angle lies in [plo, phi] (widened by a margin far
+  // larger than the rounding of either side, so the range is a superset; exact predicates decide).
+  void plane_range(double plo, double phi, int& j0, int& j1) const {
+    constexpr double kMargin = 1e-9;
+    j0 = static_cast<int>(std::lower_bound(active_keys.begin(), active_keys.end(), plo - kMargin) - active_keys.begin());
+    j1 = static_cast<int>(std::upper_bound(active_keys.begin(), active_keys.end(), phi + kMargin) - active_keys.begin());
+  }
+
+  // Conservative pseudo-angle span in the (h, z) plane of an axis-aligned local rectangle,
+  // clipped to the sky side z ≥ 0. Returns false if it cannot reach a sky half-plane.
+  static bool pencil_span(double h_lo, double h_hi, double z_lo, double z_hi, double& plo, double& phi) {
+    if (z_hi <= 0) return false;
+    z_lo = std::max(z_lo, 0.0);
+    if (z_lo == 0 && h_lo <= 0 && h_hi >= 0) {  // touches the axis: every half-plane
+      plo = 0;
+      phi = 2;
+      return true;
+    }
+    const double a = pseudo_angle(h_lo, z_lo), b = pseudo_angle(h_lo, z_hi);
+    const double c = pseudo_angle(h_hi, z_lo), d = pseudo_angle(h_hi, z_hi);
+    plo = std::min(std::min(a, b), std::min(c, d));
+    phi = std::max(std::max(a, b), std::max(c, d));
+    return true;
+  }
+
+  void traverse() {
+    const auto& nodes = scene.bvh_nodes();
+    if (nodes.empty() || active.empty()) return;
+    const double cb = std::cos(frame.beta_rad), sb = std::sin(frame.beta_rad);
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const BvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node.box.hi.z() <= p.z()) continue;  // wholly below the horizon: cannot hide sky
+      const Vec3 c = local_from_world * (node.box.centre() - p);
+      const Vec3 e = abs_local_from_world * (0.5 * (node.box.hi - node.box.lo));
+      const double lx_lo = c.x() - e.x(), lx_hi = c.x() + e.x();
+      const double lh_lo = c.y() - e.y(), lh_hi = c.y() + e.y();
+      const double lz_lo = c.z() - e.z(), lz_hi = c.z() + e.z();
+      // Wholly behind the face plane (all sample half-planes lie in the closed front half-space).
+      const double front = cb * (cb >= 0 ? lh_hi : lh_lo) + sb * (sb >= 0 ? lz_hi : lz_lo);
+      if (front < -1e-7) continue;
+      double plo, phi;
+      if (!pencil_span(lh_lo, lh_hi, lz_lo, lz_hi, plo, phi)) continue;
+      int j0, j1;
+      plane_range(plo, phi, j0, j1);
+      if (j0 >= j1) continue;
+      // α-range along the sample lines (pseudo-angle of (a, ρ)), ρ the distance to the axis.
+      const double zl = std::max(lz_lo, 0.0);
+      const double dh = lh_lo > 0 ? lh_lo : (lh_hi < 0 ? -lh_hi : 0.0);
+      const double rho_min = std::hypot(dh, zl);
+      const double rho_max = std::hypot(std::max(std::abs(lh_lo), std::abs(lh_hi)), lz_hi);
+      // The angle of (a, ρ) falls with a; it rises with ρ where a > 0 and falls where a < 0.
+      double alo = pseudo_angle(lx_hi, lx_hi >= 0 ? rho_min : rho_max);
+      double ahi = pseudo_angle(lx_lo, lx_lo >= 0 ? rho_max : rho_min);
+      alo = std::max(alo, tail_p);
+      ahi = std::min(ahi, 2.0 - tail_p);
+      if (alo >= ahi) continue;  // only within the axis tails
+      bool all_covered = true;
+      for (int j = j0; j < j1 && all_covered; ++j) all_covered = covered(planes[active[j]].occluded, alo, ahi);
+      if (all_covered) continue;
+      if (node.count > 0) {
+        const auto& order = scene.bvh_triangle_order();
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1);
+      } else {
+        const std::uint32_t l = node.first, r = node.first + 1;
+        const double dl = (nodes[l].box.centre() - p).squaredNorm();
+        const double dr = (nodes[r].box.centre() - p).squaredNorm();
+        if (dl < dr) {
+          stack.push_back(r);
+          stack.push_back(l);
+        } else {
+          stack.push_back(l);
+          stack.push_back(r);
+        }
+      }
+    }
+  }
+
+  void process_triangle(std::uint32_t t, int j0, int j1) {
+    const auto& soup = scene.soup();
+    const auto& tri = soup.triangles[t];
+    const Vec3& v0 = soup.vertices[tri[0]];
+    const Vec3& v1 = soup.vertices[tri[1]];
+    const Vec3& v2 = soup.vertices[tri[2]];
+    // Exact: a triangle wholly at or below the point's horizon hides no sky (fl(a − b) keeps the
+    // sign of a − b, so this comparison is exact).
+    if (v0.z() <= p.z() && v1.z() <= p.z() && v2.z() <= p.z()) return;
+    ++triangle_tests;
+    const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
+    Vec3 L[3];
+    for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
+    double plo, phi;
+    const double h_lo = std::min({L[0].y(), L[1].y(), L[2].y()}), h_hi = std::max({L[0].y(), L[1].y(), L[2].y()});
+    const double z_lo = std::min({L[0].z(), L[1].z(), L[2].z()}), z_hi = std::max({L[0].z(), L[1].z(), L[2].z()});
+    if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
+    int k0, k1;
+    plane_range(plo, phi, k0, k1);
+    k0 = std::max(k0, j0);
+    k1 = std::min(k1, j1);
+    if (k0 >= k1) return;
+    // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of measure
+    // zero (this is also what keeps a face from hiding the sky above itself).
+    if (CGAL::orientation(KPoint(v0.x(), v0.y(), v0.z()), KPoint(v1.x(), v1.y(), v1.z()),
+                          KPoint(v2.x(), v2.y(), v2.z()), KPoint(p.x(), p.y(), p.z())) == CGAL::COPLANAR)
+      return;
+    const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
+    for (int j = k0; j < k1; ++j) {
+      Plane& pl = planes[active[j]];
+      double val[3];
+      int sg[3];
+      for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
+      // The triangle crosses the plane only with vertices strictly on both sides; touching it
+      // at a vertex or along an edge hides nothing that the neighbours do not (docs/geometry.md).
+      if (!((sg[0] > 0 || sg[1] > 0 || sg[2] > 0) && (sg[0] < 0 || sg[1] < 0 || sg[2] < 0))) continue;
+      double ea[2], eb[2];
+      int n = 0;
+      for (int k = 0; k < 3 && n < 2; ++k) {
+        if (sg[k] == 0) {
+          ea[n] = L[k].x();
+          eb[n] = L[k].y() * pl.cosd + L[k].z() * pl.sind;
+          ++n;
+        }
+      }
+      for (int k = 0; k < 3 && n < 2; ++k) {
+        const int k2 = (k + 1) % 3;
+        if (sg[k] * sg[k2] >= 0) continue;
+        // Canonical order (by global vertex id): both triangles sharing this edge compute the
+        // bit-identical crossing point.
+        int a = k, b = k2;
+        if (g[b] < g[a]) std::swap(a, b);
+        double t = val[a] / (val[a] - val[b]);
+        t = std::clamp(t, 0.0, 1.0);
+        const Vec3 q = L[a] + t * (L[b] - L[a]);
+        ea[n] = q.x();
+        eb[n] = q.y() * pl.cosd + q.z() * pl.sind;
+        ++n;
+      }
+      if (n < 2) continue;
+      add_segment(pl, ea[0], eb[0], ea[1], eb[1]);
+    }
+  }
+
+  // The in-plane segment (a, b) → occluded pseudo-angle span, clipped to the sky side b ≥ 0.
+  static void add_segment(Plane& pl, double a0, double b0, double a1, double b1) {
+    if (b0 <= 0 && b1 <= 0) return;
+    double p0, p1;
+    if (b0 < 0 || b1 < 0) {
+      // Clip at the axis: the cut point lies on the axis, at α = 0 (a > 0) or α = π (a < 0).
+      const double t = b0 / (b0 - b1);
+      const double ac = a0 + t * (a1 - a0);
+      if (ac == 0) return;  // the segment passes through the point itself
+      const double pc = ac > 0 ? 0.0 : 2.0;
+      if (b0 < 0) {
+        p0 = pc;
+        p1 = pseudo_angle(a1, b1);
+      } else {
+        p0 = pseudo_angle(a0, b0);
+        p1 = pc;
+      }
+    } else {
+      if ((a0 == 0 && b0 == 0) || (a1 == 0 && b1 == 0)) return;  // an end point at the point
+      p0 = pseudo_angle(a0, b0);
+      p1 = pseudo_angle(a1, b1);
+    }
+    const double lo = std::min(p0, p1), hi = std::max(p0, p1);
+    if (hi > lo) insert_span(pl.occluded, lo, hi);
+  }
+
+  static void finish_plane(Plane& pl) {
+    double f = 0, prev = 0;
+    for (const Span& s : pl.occluded) {
+      if (s.lo > prev) f += uniform_sky_primitive(angle_of_pseudo(s.lo)) - uniform_sky_primitive(angle_of_pseudo(prev));
+      prev = std::max(prev, s.hi);
+    }
+    if (prev < 2) f += uniform_sky_primitive(kPi) - uniform_sky_primitive(angle_of_pseudo(prev));
+    pl.line_integral = f;
+  }
+
+  void visible_intervals(const Plane& pl, std::vector<VisibleInterval>& out) const {
+    double prev = 0;
+    auto emit = [&](double lo, double hi) {
+      const float a0 = static_cast<float>(angle_of_pseudo(lo));
+      const float a1 = static_cast<float>(angle_of_pseudo(hi));
+      if (a1 > a0) out.push_back({a0, a1});
+    };
+    for (const Span& s : pl.occluded) {
+      if (s.lo > prev) emit(prev, s.lo);
+      prev = std::max(prev, s.hi);
+    }
+    if (prev < 2) emit(prev, 2);
+  }
+
+  double band_error(const BandState& b) const {
+    if (b.e0 < 0) return 0;
+    const double fm = planes[b.c].line_integral;
+    const double ft = 0.5 * (planes[b.e0].line_integral + planes[b.e1].line_integral);
+    return (b.s1 - b.s0) * std::abs(ft - fm) / kPi;
+  }
+
+  void compute(const QueryPoint& q, VisibilityCache::PointResult& out) {
+    begin_point(q);
+    out.normal = q.normal;
+    out.bands.clear();
+    out.intervals.clear();
+    const std::vector<Band> initial = equal_weight_bands(frame, opt.bands);
+    if (initial.empty()) return;
+    const bool refine = opt.tolerance > 0;
+    std::vector<BandState> bands;
+    bands.reserve(initial.size() * 2);
+    int prev_edge = refine ? add_plane(initial[0].s0, frame.delta_at(initial[0].s0)) : -1;
+    for (const Band& b : initial) {
+      BandState st{b.s0, b.s1, prev_edge, -1, -1, 0, 0};
+      st.c = add_plane(b.s_centre(), frame.delta_at(b.s_centre()));
+      if (refine) st.e1 = add_plane(b.s1, frame.delta_at(b.s1));
+      prev_edge = st.e1;
+      bands.push_back(st);
+    }
+    run_pass(0);
+    if (refine) refine_bands(bands);
+    std::sort(bands.begin(), bands.end(), [](const BandState& a, const BandState& b) { return a.s0 < b.s0; });
+    for (const BandState& b : bands) {
+      BandRecord r;
+      r.s0 = static_cast<float>(b.s0);
+      r.s1 = static_cast<float>(b.s1);
+      r.delta_rad = static_cast<float>(planes[b.c].delta);
+      r.first_interval = static_cast<std::uint32_t>(out.intervals.size());
+      out.bands.push_back(r);
+      visible_intervals(planes[b.c], out.intervals);
+    }
+  }
+
+  // Adaptive refinement: split (in weight, at the centre plane) the bands whose estimated
+  // midpoint error is largest until the estimated total is below the tolerance. A split band's
+  // centre becomes an edge of both halves, so each split costs two new planes.
+  void refine_bands(std::vector<BandState>& bands) {
+    const double min_weight = frame.total_weight() / (opt.bands * std::ldexp(1.0, opt.max_refine_depth));
+    for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
+      double total = 0;
+      for (BandState& b : bands) total += (b.error = band_error(b));
+      if (total <= opt.tolerance) return;
+      // Split the largest errors first until the rest (and the halves, assumed ≤ half each)
+      // would fit the budget.
+      std::vector<int> order(bands.size());
+      for (std::size_t i = 0; i < bands.size(); ++i) order[i] = static_cast<int>(i);
+      std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return bands[a].error > bands[b].error || (bands[a].error == bands[b].error && a < b);
+      });
+      const std::size_t first_new = plane_count;
+      double remaining = total;
+      std::vector<BandState> added;
+      for (int i : order) {
+        if (remaining <= 0.5 * opt.tolerance) break;
+        BandState& b = bands[i];
+        if (b.error <= 0 || (b.s1 - b.s0) * 0.5 < min_weight) continue;
+        const double sc = 0.5 * (b.s0 + b.s1);
+        BandState left{b.s0, sc, b.e0, -1, b.c, 0, b.depth + 1};
+        BandState right{sc, b.s1, b.c, -1, b.e1, 0, b.depth + 1};
+        left.c = add_plane(0.5 * (left.s0 + left.s1), frame.delta_at(0.5 * (left.s0 + left.s1)));
+        right.c = add_plane(0.5 * (right.s0 + right.s1), frame.delta_at(0.5 * (right.s0 + right.s1)));
+        remaining -= 0.5 * b.error;
+        b = left;
+        added.push_back(right);
+      }
+      if (plane_count == first_new) return;
+      bands.insert(bands.end(), added.begin(), added.end());
+      run_pass(first_new);
+    }
+  }
+
+  void single_plane(const QueryPoint& q, double delta) {
+    begin_point(q);
+    const double s = std::sin(delta - frame.beta_rad);
+    add_plane(s, delta);
+    run_pass(0);
+  }
+};
+
+BandVisibility::BandVisibility(const Scene& scene, const VisibilityOptions& options)
+    : impl_(new Impl(scene, options)) {}
+BandVisibility::~BandVisibility() { delete impl_; }
+
+void BandVisibility::compute(const QueryPoint& q, VisibilityCache::PointResult& out) { impl_->compute(q, out); }
+
+void BandVisibility::visible_on_plane(const QueryPoint& q, double delta_rad, std::vector<VisibleInterval>& out) {
+  out.clear();
+  impl_->single_plane(q, delta_rad);
+  impl_->visible_intervals(impl_->planes[0], out);
+}
+
+bool BandVisibility::direction_visible(const QueryPoint& q, const Vec3& direction) {
+  const BandFrame frame = BandFrame::make(q.normal);
+  if (direction.dot(frame.normal) <= 0 || direction.z() < 0) return false;
+  double alpha, delta;
+  frame.angles_of(direction, alpha, delta);
+  impl_->single_plane(q, delta);
+  const double pa = pseudo_angle(std::cos(alpha), std::sin(alpha));
+  for (const Span& s : impl_->planes[0].occluded)
+    if (s.lo <= pa && pa <= s.hi) return false;
+  return true;
+}
+
+std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle_tests; }
+std::size_t BandVisibility::last_plane_count() const { return impl_->plane_count; }
+
+VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
+                                   const VisibilityOptions& options, int threads,
+                                   const std::function<void(std::size_t, std::size_t)>& progress) {
+  constexpr std::size_t kChunk = 256;
+  const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
+  std::vector<VisibilityCache> parts(chunks);
+  tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  auto body = [&](const tbb::blocked_range<std::size_t>& range) {
+    auto& worker = workers.local();
+    if (!worker) worker = std::make_unique<BandVisibility>(scene, options);
+    VisibilityCache::PointResult result;
+    for (std::size_t c = range.begin(); c != range.end(); ++c) {
+      const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
+      parts[c].reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
+      for (std::size_t i = first; i < last; ++i) {
+        worker->compute(points[i], result);
+        parts[c].append(result);
+      }
+      const std::size_t now = done += (last - first);
+      if (progress) {
+        std::unique_lock lock(progress_mutex, std::try_to_lock);
+        if (lock.owns_lock()) progress(now, points.size());
+      }
+    }
+  };
+  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(n);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), body); });
+  VisibilityCache cache;
+  std::size_t bands = 0, intervals = 0;
+  for (const auto& part : parts) {
+    bands += part.bands().size();
+    intervals += part.intervals().size();
+  }
+  cache.reserve(points.size(), points.empty() ? 0 : bands / points.size() + 1);
+  for (const auto& part : parts) cache.append(part);
+  if (progress) progress(points.size(), points.size());
+  return cache;
+}
+
+}  // namespace skyband
