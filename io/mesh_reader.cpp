@@ -274,6 +274,18 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
     r.notes.push_back("only " + std::to_string(r.faces_read) + " of " + std::to_string(r.faces_in_file) +
                       " faces gave triangles");
   r.defects = analyse_defects(out);
+  if (used != &soup) {
+    // The "as stored" counts describe the file, not the vertices OpenMesh duplicated at
+    // non-manifold places.
+    TriangleSoup file_vertices;
+    file_vertices.vertices = soup.vertices;
+    const MeshDefects stored = analyse_defects(file_vertices);
+    r.defects.duplicate_vertex_positions = stored.duplicate_vertex_positions;
+    r.defects.vertices_in_duplicate_positions = stored.vertices_in_duplicate_positions;
+    std::vector<char> referenced(soup.vertices.size(), 0);
+    for (const std::uint32_t i : soup.indices) referenced[i] = 1;
+    r.defects.unreferenced_vertices = static_cast<std::size_t>(std::count(referenced.begin(), referenced.end(), 0));
+  }
   if (report) *report = std::move(r);
   return out;
 }
