@@ -23,8 +23,6 @@
 #include <span>
 #include <vector>
 
-#include <Eigen/Geometry>  // Vec3::cross (geometry/vec3.h includes only Eigen/Core)
-
 #include "geometry/triangle_soup.h"
 #include "geometry/vec3.h"
 
