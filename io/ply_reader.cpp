@@ -196,7 +196,7 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
 
   BodyReader body(name, std::string_view(bytes).substr(pos), line + 1, format);
   body.set_offset(pos);
-  bool have_vertices = false, have_faces = false;
+  bool have_vertices = false, have_faces = false, vertices_done = false;
   for (const Element& e : elements) {
     int ix = -1, iy = -1, iz = -1, ifaces = -1;
     for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
@@ -246,9 +246,10 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
         for (std::size_t j = 0; j < n; ++j) {
           const double v = body.read(prop.type, what + " item " + std::to_string(j));
           if (face_element && k == ifaces) {
-            if (v < 0 || v > 0xFFFFFFFEu)
+            if (v < 0 || v > 0xFFFFFFFEu || (vertices_done && v >= static_cast<double>(soup.vertices.size())))
               throw InputError(body.where() + ": face " + std::to_string(i) + " vertex index " +
-                               std::to_string(static_cast<long long>(v)) + " is out of range");
+                               std::to_string(static_cast<long long>(v)) + " is out of range [0, " +
+                               std::to_string(soup.vertices.size()) + ")");
             soup.indices.push_back(static_cast<std::uint32_t>(v));
           }
         }
@@ -256,6 +257,7 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
       }
       if (vertex_element) add_vertex(soup, p);
     }
+    if (vertex_element) vertices_done = true;
   }
   if (!have_faces && !have_vertices) throw InputError(name + ": PLY file has neither a vertex nor a face element");
   for (std::size_t f = 0; f < soup.polygon_count(); ++f)

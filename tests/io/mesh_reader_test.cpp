@@ -1,0 +1,391 @@
+#define BOOST_TEST_MODULE mesh_reader
+#include <boost/test/unit_test.hpp>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include "geometry/input_error.h"
+#include "io/mesh_reader.h"
+
+using namespace skyband;
+namespace fs = std::filesystem;
+namespace tt = boost::test_tools;
+
+namespace {
+
+const fs::path kBuildings = fs::path(SKYBAND_SHARED_DATA) / "buildings";
+const fs::path kDegenerate = fs::path(SKYBAND_SHARED_DATA) / "degenerate";
+const fs::path kMine = fs::path(SKYBAND_TEST_DATA) / "meshes";
+
+// The InputError message of reading `file`, or "" if it loads.
+std::string error_of(const fs::path& file) {
+  try {
+    read_mesh(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+double triangle_area_sum(const TriangleSoup& s) {
+  double a = 0;
+  for (const auto& t : s.triangles)
+    a += 0.5 * (s.vertices[t[1]] - s.vertices[t[0]]).cross(s.vertices[t[2]] - s.vertices[t[0]]).norm();
+  return a;
+}
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("skyband_mesh_reader_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+void write_bytes(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary);
+  out << bytes;
+}
+
+template <class T>
+void put(std::string& out, T value, bool big_endian) {
+  char b[sizeof(T)];
+  std::memcpy(b, &value, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(b, b + sizeof(T));
+  out.append(b, sizeof(T));
+}
+
+// Expected results from the READMEs of /work/shared/data ("check-script findings", "parsed",
+// "triangles after ear-clipping"); only the counts whose definitions match ours are listed
+// (edge counts after merging exact duplicates; zero-area faces in exact arithmetic).
+struct Expected {
+  std::size_t triangles, faces;
+  long zero_area = -1, boundary = -1, non_manifold = -1, inconsistent = -1, duplicates = -1, nm_vertices = -1;
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(every_shared_file_loads_or_fails_cleanly) {
+  // README numbers. Triangle-only files: triangles = faces (no face lost); polygon files: the
+  // README's "triangles after ear-clipping".
+  const std::map<std::string, Expected> loads{
+      {"buildings/ingolstadt_lod3_building_4018266.obj", {1020, 1020, 0, 5, 91, 37, 0, -1}},
+      {"buildings/val3dity_building_nearly-collinear.off", {34, 11, 0, 0, 0, 0, 0, 0}},
+      {"buildings/val3dity_building_v405.off", {60, 60, 0, 0, 0, 0, 0, 0}},
+      {"buildings/rotterdam_delfshaven_blockA_lod2.obj", {4931, 4931, 42, 2176, 30, -1, 0, -1}},
+      {"buildings/delft_3dfier_testarea_lod1.obj", {28619, 28619, 2, 950, 42, -1, 0, 3}},
+      {"degenerate/cgal_degtri_nullface.off", {7, 7, 4, 3, 3, -1, 1, -1}},
+      {"degenerate/cgal_all_degen.off", {7, 7, 7, 1, 3, -1, 2, -1}},
+      {"degenerate/cgal_caps_and_needles.off", {3, 3, 0, 9, 0, 0, 0, 0}},
+      {"degenerate/cgal_overlapping_triangles.off", {2, 2, 0, 4, 0, 0, 0, 0}},
+      {"degenerate/cgal_self_intersection.off", {512, 512, 0, 64, 0, 0, 0, 0}},
+      {"degenerate/cgal_non_manifold_vertex.off", {106, 106, 0, 22, 0, 0, 0, 1}},
+      {"degenerate/cgal_nm_edges_triple.off", {10, 10, 0, 15, 1, 0, 2, 0}},
+      {"degenerate/cgal_incompatible_orientation.off", {16, 9, 0, 14, 0, 4, 0, 0}},
+      {"degenerate/cgal_isolated_singular_vertex_one_cc.off", {16, 12, 0, 0, 0, 6, 0, 1}},
+      {"degenerate/cgal_cube-ouvert.off", {10, 10, 0, 4, 0, 0, 0, 0}},
+      {"degenerate/cgal_quads_to_stitch.off", {16, 8, 0, 12, 0, 0, 5, 0}},
+      {"degenerate/cgal_non_manifold_face_graph.off", {21, 11, 0, 20, 1, 0, 3, 1}},
+      {"degenerate/cgal_fused_vertices.off", {45, 45, 7, 33, 7, -1, 5, 4}},
+      {"degenerate/assimp_concave_polygon.obj", {64, 1, 0, 64, 0, 0, 0, 0}},
+      {"degenerate/assimp_sphereWithHole.stl", {285, 285, 0, 9, 0, 0, -1, 2}},
+      {"degenerate/assimp_3DSMaxExport.STL", {2000, 2000, 0, -1, 16, -1, -1, -1}},
+      {"degenerate/val3dity_304_2.obj", {28, 13, 0, 0, 0, 0, 0, 3}},
+      {"degenerate/val3dity_duplicatevertices.obj", {5, 5, 0, 2, 1, -1, 4, -1}},
+  };
+  // Files that must be rejected, with a part of the message that names the problem.
+  const std::map<std::string, std::vector<std::string>> rejects{
+      {"degenerate/assimp_invalid.off", {"assimp_invalid.off:6:", "declares 0 vertices"}},
+      {"degenerate/assimp_number_formats.obj", {"assimp_number_formats.obj:11:", "'3.1+e2'", "not a number"}},
+      {"degenerate/val3dity_index901.obj", {"val3dity_index901.obj:", "index 9", "8 vertices"}},
+      {"degenerate/val3dity_completely_empty.obj", {"val3dity_completely_empty.obj", "empty mesh"}},
+  };
+  std::size_t seen = 0;
+  for (const fs::path& dir : {kBuildings, kDegenerate}) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const fs::path f = entry.path();
+      const std::string ext = f.extension().string();
+      if (ext == ".md" || ext == ".mtl") continue;
+      if (f.filename() == "ingolstadt_lod3_street.obj") continue;  // own test below (5 MB)
+      const std::string key = dir.filename().string() + "/" + f.filename().string();
+      BOOST_TEST_CONTEXT(key) {
+        ++seen;
+        if (auto it = rejects.find(key); it != rejects.end()) {
+          const std::string message = error_of(f);
+          for (const auto& part : it->second) BOOST_TEST(contains(message, part), "'" << message << "' lacks '" << part << "'");
+          continue;
+        }
+        const auto it = loads.find(key);
+        BOOST_REQUIRE_MESSAGE(it != loads.end(), "no expectation for " << key);
+        const Expected& e = it->second;
+        MeshReadReport r;
+        const TriangleSoup s = read_mesh(f, &r);
+        BOOST_TEST(r.faces_in_file == e.faces);
+        BOOST_TEST(r.faces_read == e.faces);  // no face lost
+        BOOST_TEST(s.triangles.size() == e.triangles);
+        BOOST_TEST(r.triangles == e.triangles);
+        if (e.zero_area >= 0) BOOST_TEST(r.defects.zero_area_triangles == static_cast<std::size_t>(e.zero_area));
+        if (e.boundary >= 0) BOOST_TEST(r.defects.boundary_edges == static_cast<std::size_t>(e.boundary));
+        if (e.non_manifold >= 0) BOOST_TEST(r.defects.non_manifold_edges == static_cast<std::size_t>(e.non_manifold));
+        if (e.inconsistent >= 0) BOOST_TEST(r.defects.inconsistently_oriented_edges == static_cast<std::size_t>(e.inconsistent));
+        if (e.duplicates >= 0) BOOST_TEST(r.defects.duplicate_vertex_positions == static_cast<std::size_t>(e.duplicates));
+        if (e.nm_vertices >= 0) BOOST_TEST(r.defects.non_manifold_vertices == static_cast<std::size_t>(e.nm_vertices));
+        BOOST_TEST(!r.reader.empty());
+        for (const auto& v : s.vertices) BOOST_TEST(v.allFinite());
+      }
+    }
+  }
+  BOOST_TEST(seen == loads.size() + rejects.size());  // every file has an expectation
+}
+
+BOOST_AUTO_TEST_CASE(stl_welding_matches_readme_vertex_counts) {
+  // README: "vertices counted after merging identical coordinates": 146 and 1042.
+  MeshReadReport r;
+  read_mesh(kDegenerate / "assimp_sphereWithHole.stl", &r);
+  BOOST_TEST(r.vertices_in_file == 146u);
+  BOOST_TEST(r.format == "STL (ascii)");
+  read_mesh(kDegenerate / "assimp_3DSMaxExport.STL", &r);
+  BOOST_TEST(r.vertices_in_file == 1042u);
+  BOOST_TEST(r.format == "STL (binary)");
+  BOOST_TEST(contains(r.summary(), "welded"));
+}
+
+BOOST_AUTO_TEST_CASE(street_file_loses_no_face) {
+  // README: 69590 vertices, 150078 faces; OpenMesh 9 keeps only 149335 (743 lost). Defect
+  // counts from the README's check-script findings (the file has no duplicate positions).
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kBuildings / "ingolstadt_lod3_street.obj", &r);
+  BOOST_TEST(r.vertices_in_file == 69590u);
+  BOOST_TEST(r.faces_in_file == 150078u);
+  BOOST_TEST(r.faces_read == 150078u);
+  BOOST_TEST(s.triangles.size() == 150078u);
+  BOOST_TEST(r.defects.degenerate_index_triangles == 743u);
+  BOOST_TEST(r.defects.zero_area_triangles == 748u);
+  BOOST_TEST(r.defects.duplicate_triangles == 1346u);
+  BOOST_TEST(r.defects.boundary_edges == 14949u);
+  BOOST_TEST(r.defects.non_manifold_edges == 21739u);
+  BOOST_TEST(r.defects.inconsistently_oriented_edges == 7106u);
+  BOOST_TEST(contains(r.reader, "skyband polygon soup"));
+}
+
+BOOST_AUTO_TEST_CASE(large_coordinates_are_kept_verbatim) {
+  // First `v` line of the building file: "v 678045.908 5403933.387 429.201". The compiler's
+  // correctly rounded literals are the independent reference; OpenMesh 9 would give 678045.9375.
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kBuildings / "ingolstadt_lod3_building_4018266.obj", &r);
+  BOOST_TEST(s.vertices[0].x() == 678045.908);
+  BOOST_TEST(s.vertices[0].y() == 5403933.387);
+  BOOST_TEST(s.vertices[0].z() == 429.201);
+  BOOST_TEST(contains(r.reader, "32-bit floats"));
+}
+
+BOOST_AUTO_TEST_CASE(concave_keyhole_polygon_area_matches_shoelace) {
+  // assimp_concave_polygon.obj: one 66-vertex ring in the plane x = -1.146. Independent area:
+  // shoelace over the ring in (y, z), read straight from the file's text (the bridge's two
+  // traversals cancel). README: 0.24550; a fan would give 3.217 (unsigned).
+  const fs::path f = kDegenerate / "assimp_concave_polygon.obj";
+  std::vector<Vec3> v;
+  std::vector<long> ring;
+  std::ifstream in(f);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "v") {
+      double x, y, z;
+      ls >> x >> y >> z;
+      v.emplace_back(x, y, z);
+    } else if (key == "f") {
+      std::string corner;
+      while (ls >> corner) ring.push_back(std::stol(corner.substr(0, corner.find('/'))) - 1);
+    }
+  }
+  BOOST_REQUIRE_EQUAL(ring.size(), 66u);
+  double shoelace = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec3& a = v[static_cast<std::size_t>(ring[i])];
+    const Vec3& b = v[static_cast<std::size_t>(ring[(i + 1) % ring.size()])];
+    shoelace += a.y() * b.z() - b.y() * a.z();
+  }
+  shoelace = std::abs(0.5 * shoelace);
+  BOOST_TEST(shoelace == 0.24550, tt::tolerance(1e-4));  // README prints 5 digits
+
+  const TriangleSoup s = read_mesh(f);
+  // Tolerance: coordinates O(3), 64 triangles: sums agree to ~1e-15·64 relative; 1e-12 is safe.
+  BOOST_TEST(triangle_area_sum(s) == shoelace, tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(own_concave_polygon_in_tilted_plane) {
+  // concave_u.obj: U-shaped octagon in the plane x + y + z = 10; its xy shoelace area is
+  // 3·3 − 1·2 = 7, so the area is 7·√3 (the plane's normal makes cos = 1/√3 with z).
+  const TriangleSoup s = read_mesh(kMine / "concave_u.obj");
+  BOOST_TEST(s.triangles.size() == 6u);
+  BOOST_TEST(triangle_area_sum(s) == 7.0 * std::sqrt(3.0), tt::tolerance(1e-13));
+  for (const auto& t : s.triangles) {  // orientation of the ring (counter-clockwise from +(1,1,1))
+    const Vec3 n = (s.vertices[t[1]] - s.vertices[t[0]]).cross(s.vertices[t[2]] - s.vertices[t[0]]);
+    BOOST_TEST(n.dot(Vec3(1, 1, 1)) > 0.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(off_with_comment_lines_loses_no_face) {
+  // OpenMesh 9 refuses OFF files with '#' comment lines (measured); all 3 faces must be read.
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kMine / "comments.off", &r);
+  BOOST_TEST(r.faces_in_file == 3u);
+  BOOST_TEST(r.faces_read == 3u);
+  BOOST_TEST(s.triangles.size() == 3u);
+  BOOST_TEST(contains(r.reader, "skyband polygon soup"), r.reader);
+}
+
+BOOST_AUTO_TEST_CASE(ply_with_crlf_loses_no_face) {
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kMine / "crlf.ply", &r);
+  BOOST_TEST(r.faces_read == 2u);
+  BOOST_TEST(s.triangles.size() == 2u);
+  BOOST_TEST(s.vertices.size() == 4u);
+  BOOST_TEST(s.vertices[2] == Vec3(2, 1, 0));
+}
+
+BOOST_AUTO_TEST_CASE(openmesh_is_used_where_it_is_exact) {
+  // Small integer coordinates are exact 32-bit floats and the mesh is manifold: OpenMesh reads
+  // it faithfully and the report says so.
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kMine / "two_triangles.stl", &r);
+  BOOST_TEST(r.reader == "OpenMesh 9");
+  BOOST_TEST(s.triangles.size() == 2u);
+  BOOST_TEST(r.vertices_in_file == 4u);  // 6 corners welded into 4 vertices
+  BOOST_TEST(r.defects.boundary_edges == 4u);
+}
+
+BOOST_AUTO_TEST_CASE(obj_features_materials_and_relative_indices) {
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(kMine / "features.obj", &r);
+  BOOST_REQUIRE_EQUAL(s.triangles.size(), 4u);  // quad → 2, then 2 triangles; the `l` line ignored
+  BOOST_REQUIRE_EQUAL(s.triangle_material.size(), 4u);
+  auto name = [&](std::size_t t) { return s.material_names[s.triangle_material[t]]; };
+  BOOST_TEST(name(0) == "Ground");
+  BOOST_TEST(name(1) == "Ground");
+  BOOST_TEST(name(2) == "Roof");
+  BOOST_TEST(name(3) == "Ground");
+  // "f -3//1 -2//1 -1//1" after 7 vertices refers to vertices 5, 6, 7 (0-based 4, 5, 6).
+  BOOST_TEST((s.triangles[2] == std::array<std::uint32_t, 3>{4, 5, 6}));
+  BOOST_TEST(r.polygons_triangulated == 1u);
+  // Appending keeps the names (materials merged by name).
+  TriangleSoup scene;
+  scene.append(s);
+  scene.append(s);
+  BOOST_TEST(scene.triangles.size() == 8u);
+  BOOST_TEST(scene.material_names[scene.triangle_material[6]] == "Roof");
+}
+
+BOOST_AUTO_TEST_CASE(off_header_variants) {
+  MeshReadReport r;
+  BOOST_TEST(read_mesh(kMine / "noff.off", &r).triangles.size() == 1u);
+  BOOST_TEST(contains(r.format, "NOFF"));
+  BOOST_TEST(read_mesh(kMine / "coff.off", &r).triangles.size() == 1u);
+  BOOST_TEST(contains(r.format, "COFF"));
+}
+
+BOOST_AUTO_TEST_CASE(binary_ply_both_endians_keep_doubles) {
+  // Hand-built binary PLY: double coordinates at UTM scale, uchar counts with int indices, and
+  // an extra vertex property and element that must be skipped.
+  const fs::path dir = temp_dir();
+  for (const bool big : {false, true}) {
+    std::string b = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                    "property uchar quality\nelement face 1\nproperty list uchar int vertex_indices\n"
+                    "element extra 1\nproperty list uchar uint stuff\nend_header\n";
+    const double xs[4] = {678040.189, 678041.189, 678041.189, 678040.189};
+    const double ys[4] = {5403913.006, 5403913.006, 5403914.006, 5403914.006};
+    for (int i = 0; i < 4; ++i) {
+      put<double>(b, xs[i], big);
+      put<double>(b, ys[i], big);
+      put<double>(b, 414.907, big);
+      put<std::uint8_t>(b, 7, big);
+    }
+    put<std::uint8_t>(b, 4, big);
+    for (std::int32_t i = 0; i < 4; ++i) put<std::int32_t>(b, i, big);
+    put<std::uint8_t>(b, 2, big);
+    put<std::uint32_t>(b, 1, big);
+    put<std::uint32_t>(b, 2, big);
+    const fs::path f = dir / (big ? "be.ply" : "le.ply");
+    write_bytes(f, b);
+    MeshReadReport r;
+    const TriangleSoup s = read_mesh(f, &r);
+    BOOST_TEST(r.format == (big ? "PLY (binary big endian)" : "PLY (binary little endian)"));
+    BOOST_TEST(s.triangles.size() == 2u);
+    BOOST_TEST(s.vertices[2].x() == 678041.189);
+    BOOST_TEST(s.vertices[2].y() == 5403914.006);
+    // Truncated body: error names the byte where data ran out.
+    write_bytes(f, b.substr(0, b.size() - 5));
+    const std::string message = error_of(f);
+    BOOST_TEST(contains(message, "ends at byte"), message);
+  }
+  fs::remove_all(dir);
+}
+
+BOOST_AUTO_TEST_CASE(binary_stl_errors_and_welding) {
+  const fs::path dir = temp_dir();
+  auto stl = [](float bad) {
+    std::string b(80, ' ');
+    put<std::uint32_t>(b, 2, false);
+    const float tri[2][9] = {{0, 0, 0, 1, 0, 0, 1, 1, 0}, {0, 0, 0, 1, 1, 0, 0, 1, bad}};
+    for (const auto& t : tri) {
+      for (int i = 0; i < 3; ++i) put<float>(b, 0.0f, false);  // normal (ignored)
+      for (const float c : t) put<float>(b, c, false);
+      put<std::uint16_t>(b, 0, false);
+    }
+    return b;
+  };
+  write_bytes(dir / "ok.stl", stl(0.0f));
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(dir / "ok.stl", &r);
+  BOOST_TEST(s.vertices.size() == 4u);
+  BOOST_TEST(r.format == "STL (binary)");
+  write_bytes(dir / "nan.stl", stl(std::nanf("")));
+  const std::string message = error_of(dir / "nan.stl");
+  BOOST_TEST(contains(message, "facet 1 vertex 2"), message);
+  BOOST_TEST(contains(message, "non-finite"), message);
+  write_bytes(dir / "short.stl", stl(0.0f).substr(0, 120));
+  BOOST_TEST(contains(error_of(dir / "short.stl"), "neither ascii STL"));
+  fs::remove_all(dir);
+}
+
+BOOST_AUTO_TEST_CASE(every_error_path_names_file_line_and_value) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases{
+      {"bad_nonfinite.off", {"bad_nonfinite.off:4:", "non-finite", "'inf'"}},
+      {"bad_index.off", {"bad_index.off:6:", "index 3", "out of range"}},
+      {"bad_short_face.off", {"bad_short_face.off:7:", "declares 2 vertices"}},
+      {"bad_truncated.off", {"bad_truncated.off:", "1 of 3 faces"}},
+      {"bad_index_zero.obj", {"bad_index_zero.obj:4:", "index 0"}},
+      {"bad_relative_index.obj", {"bad_relative_index.obj:4:", "-4"}},
+      {"bad_number.obj", {"bad_number.obj:2:", "'0x1'", "not a number"}},
+      {"bad_no_faces.obj", {"bad_no_faces.obj", "empty mesh", "3 vertices"}},
+      {"bad_index.ply", {"bad_index.ply:13:", "index 7", "out of range"}},
+      {"bad_nonfinite.ply", {"bad_nonfinite.ply:11:", "'nan'"}},
+      {"bad_missing_endloop.stl", {"bad_missing_endloop.stl:7:", "'endfacet'"}},
+  };
+  for (const auto& [file, parts] : cases) {
+    BOOST_TEST_CONTEXT(file) {
+      const std::string message = error_of(kMine / file);
+      BOOST_TEST(!message.empty());
+      for (const auto& p : parts) BOOST_TEST(contains(message, p), "'" << message << "' lacks '" << p << "'");
+    }
+  }
+  const std::string missing = error_of(kMine / "no_such_file.obj");
+  BOOST_TEST(contains(missing, "no_such_file.obj"));
+  BOOST_TEST(contains(missing, "does not exist"));
+  const std::string unknown = error_of(kMine / "mesh.3ds");
+  BOOST_TEST(contains(unknown, "'.3ds'"));
+  BOOST_TEST(contains(unknown, ".obj, .off, .ply, .stl"));
+  BOOST_TEST(contains(error_of(kMine), "unknown mesh file extension"));  // a folder, no extension
+}
