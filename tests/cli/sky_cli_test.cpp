@@ -1,0 +1,201 @@
+#define BOOST_TEST_MODULE sky_cli
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
+
+namespace tt = boost::test_tools;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+fs::path work_dir() {
+  const fs::path d = fs::path(SKYBAND_BINARY_DIR) / "test_output" / "sky_cli";
+  fs::create_directories(d);
+  return d;
+}
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("SKYBAND_EXE");
+  BOOST_REQUIRE_MESSAGE(exe != nullptr, "SKYBAND_EXE is not set");
+  static int counter = 0;
+  const fs::path err_file = work_dir() / ("stderr_" + std::to_string(counter++) + ".txt");
+  const std::string cmd = std::string("'") + exe + "' sky " + args + " 2>'" + err_file.string() + "'";
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  BOOST_REQUIRE(p != nullptr);
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+json run_json(const std::string& args) {
+  const RunResult r = run(args + " --json");
+  BOOST_REQUIRE_MESSAGE(r.exit_code == 0, "exit " << r.exit_code << ": " << r.err);
+  return json::parse(r.out);
+}
+
+double trapezoid(const json& x, const json& y) {
+  double s = 0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i)
+    s += 0.5 * (y[i].get<double>() + y[i + 1].get<double>()) * (x[i + 1].get<double>() - x[i].get<double>());
+  return s;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(json_has_the_required_keys) {
+  const json j = run_json("--sun-altitude 30 --sun-azimuth 135 --model single");
+  for (const char* k : {"altitude_deg", "azimuth_deg", "direct_normal_irradiance_W_m2", "direct_normal_illuminance_lx",
+                        "chromaticity_xy", "cct_K", "spectrum"})
+    BOOST_TEST(j.at("sun").contains(k), k);
+  BOOST_TEST(j["sun"]["spectrum"]["wavelength_nm"].size() == 41u);
+  BOOST_TEST(j["sun"]["spectrum"]["direct_normal_W_m2_nm"].size() == 41u);
+  BOOST_TEST(j["sun"]["chromaticity_xy"].size() == 2u);
+  for (const char* k : {"horizontal_diffuse_irradiance_W_m2", "horizontal_diffuse_illuminance_lx", "zenith"}) BOOST_TEST(j.at("sky").contains(k), k);
+  BOOST_TEST(j["sky"]["zenith"].contains("luminance_cd_m2"));
+  BOOST_TEST(j["sky"]["zenith"]["chromaticity_xy"].size() == 2u);
+  for (const char* k : {"400", "550", "700"}) BOOST_TEST(j["atmosphere"]["rayleigh_optical_depth"].contains(k), k);
+  BOOST_TEST(j["atmosphere"]["aerosol_optical_depth_550"].get<double>() == 0.1);
+  BOOST_TEST(j["atmosphere"]["ozone_DU"].get<double>() == 300.0);
+  BOOST_TEST(j["sun"]["altitude_deg"].get<double>() == 30.0);
+  BOOST_TEST(j["sun"]["azimuth_deg"].get<double>() == 135.0);
+}
+
+BOOST_AUTO_TEST_CASE(json_values_are_consistent) {
+  const json j = run_json("--sun-altitude 45 --model single --aod550 0.05 --ozone-du 250");
+  // The broadband value is the trapezoid of the printed spectrum (independent recomputation;
+  // the JSON prints doubles with round-trip precision → 1e-12).
+  const json& sp = j["sun"]["spectrum"];
+  BOOST_TEST(j["sun"]["direct_normal_irradiance_W_m2"].get<double>() == trapezoid(sp["wavelength_nm"], sp["direct_normal_W_m2_nm"]),
+             tt::tolerance(1e-12));
+  // Rayleigh optical depth at sea level, 550 nm: 0.0968 (Bucholtz 1995, reference-notes §2.3
+  // table, 4 digits) → 0.1% plus the atmosphere's own fitting (1%).
+  BOOST_TEST(j["atmosphere"]["rayleigh_optical_depth"]["550"].get<double>() == 0.0968, tt::tolerance(0.01));
+  BOOST_TEST(j["atmosphere"]["ozone_DU"].get<double>() == 250.0);
+  // Plausibility band (reference-notes §3.2): direct sun at 45° with light aerosol is within
+  // 60–120 klx, a sunlight CCT within 4500–6000 K; the sky is bluer (higher CCT) than the sun.
+  const double lx = j["sun"]["direct_normal_illuminance_lx"].get<double>();
+  BOOST_TEST(lx > 60e3);
+  BOOST_TEST(lx < 120e3);
+  const double cct = j["sun"]["cct_K"].get<double>();
+  BOOST_TEST(cct > 4500.0);
+  BOOST_TEST(cct < 6000.0);
+  BOOST_TEST(j["sky"]["horizontal_diffuse_cct_K"].get<double>() > cct);
+}
+
+BOOST_AUTO_TEST_CASE(spa_worked_example_through_the_cli) {
+  // NREL SPA worked example (Reda & Andreas 2008, Table A5.2): zenith 50.11162°, azimuth
+  // 194.34024° (5 decimals → 1e-5).
+  const json j = run_json(
+      "--lat 39.742476 --lon -105.1786 --elevation 1830.14 --time 2003-10-17T12:30:30 --tz -7 "
+      "--pressure-mbar 820 --temperature-c 11 --delta-t 67 --model single");
+  BOOST_TEST(std::abs(j["sun"]["altitude_deg"].get<double>() - (90.0 - 50.11162)) < 1e-5);
+  BOOST_TEST(std::abs(j["sun"]["azimuth_deg"].get<double>() - 194.34024) < 1e-5);
+}
+
+BOOST_AUTO_TEST_CASE(cie_overcast_closed_form_and_no_sun) {
+  // E_h = 7πL_z/9 for the CIE overcast sky (reference-notes §3.3); the CLI integrates on 0.5°
+  // cells (midpoint error ~1e-5) → 1e-4.
+  const json j = run_json("--sun-altitude 35 --model cie-overcast --zenith-luminance 10000");
+  BOOST_TEST(j["sky"]["horizontal_diffuse_illuminance_lx"].get<double>() == 7.0 * M_PI / 9.0 * 10000.0, tt::tolerance(1e-4));
+  BOOST_TEST(j["sky"]["zenith"]["luminance_cd_m2"].get<double>() == 10000.0, tt::tolerance(1e-9));
+  BOOST_TEST(j["sun"]["direct_normal_irradiance_W_m2"].get<double>() == 0.0);
+  BOOST_TEST(j["sun"]["cct_K"].is_null());
+  BOOST_TEST(j["sky"]["model"].get<std::string>() == "cie-overcast");
+}
+
+BOOST_AUTO_TEST_CASE(sun_below_horizon) {
+  const json j = run_json("--sun-altitude -5 --model single");
+  BOOST_TEST(j["sun"]["above_horizon"].get<bool>() == false);
+  BOOST_TEST(j["sun"]["direct_normal_irradiance_W_m2"].get<double>() == 0.0);
+  BOOST_TEST(j["sun"]["chromaticity_xy"].is_null());
+  const double d = j["sky"]["horizontal_diffuse_irradiance_W_m2"].get<double>();
+  BOOST_TEST((std::isfinite(d) && d >= 0.0));
+}
+
+BOOST_AUTO_TEST_CASE(impossible_parameters_exit_2_naming_flag_and_value) {
+  struct Case {
+    const char* args;
+    const char* flag;
+    const char* value;
+  };
+  const Case cases[] = {
+      {"--sun-altitude 95", "--sun-altitude", "95"},
+      {"--sun-altitude -91", "--sun-altitude", "-91"},
+      {"--sun-altitude 30 --aod550 -0.5", "--aod550", "-0.5"},
+      {"--sun-altitude 30 --ozone-du -3", "--ozone-du", "-3"},
+      {"--sun-altitude 30 --model cie-16", "--model", "cie-16"},
+      {"--sun-altitude 30 --model clear", "--model", "clear"},
+      {"--lat 40 --lon 10 --time 2026-02-30T10:00Z", "--time", "2026-02-30T10:00Z"},
+      {"--lat 40 --lon 10 --time tomorrow", "--time", "tomorrow"},
+      {"--lat 40 --lon 10 --time 2026-06-21T12:00", "--time", "2026-06-21T12:00"},
+      {"--lat 95 --lon 10 --time 2026-06-21T12:00Z", "--lat", "95"},
+      {"--sun-altitude 30 --out sky.txt", "--out", "sky.txt"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run(c.args);
+    BOOST_TEST(r.exit_code == 2, c.args << " → exit " << r.exit_code);
+    BOOST_TEST(r.err.find(c.flag) != std::string::npos, c.args << " → " << r.err);
+    BOOST_TEST(r.err.find(c.value) != std::string::npos, c.args << " → " << r.err);
+    BOOST_TEST(r.out.empty());
+  }
+  // No sun at all, or both ways of giving it.
+  BOOST_TEST(run("").exit_code == 2);
+  BOOST_TEST(run("--sun-altitude 30 --lat 40 --lon 10 --time 2026-06-21T12:00Z").exit_code == 2);
+  // Not a number at all: CLI11's own parse error, non-zero.
+  BOOST_TEST(run("--sun-altitude abc").exit_code != 0);
+}
+
+BOOST_AUTO_TEST_CASE(fisheye_exr_and_png_appear) {
+  const fs::path exr = work_dir() / "east_sun.exr", png = work_dir() / "east_sun.png";
+  fs::remove(exr);
+  fs::remove(png);
+  // Sun low in the east: with north up and east LEFT the left half must be brighter.
+  const json j = run_json("--sun-altitude 10 --sun-azimuth 90 --model single --size 64 --out '" + exr.string() + "'");
+  BOOST_REQUIRE(fs::exists(exr));
+  BOOST_REQUIRE(fs::exists(png));
+  BOOST_TEST(j["image"]["exr"].get<std::string>() == exr.string());
+  const skyband::ExrImage img = skyband::read_exr_layers(exr);
+  BOOST_TEST(img.width == 64);
+  BOOST_TEST(img.height == 64);
+  BOOST_REQUIRE_EQUAL(img.layers.size(), 1u);
+  BOOST_TEST(img.layers[0].name == "sky");
+  BOOST_TEST(img.attributes.count("skyband_units") == 1u);
+  BOOST_TEST(img.attributes.at("skyband_sky").find("model=single") != std::string::npos);
+  BOOST_TEST(img.attributes.at("skyband_projection").find("east left") != std::string::npos);
+  const auto& px = img.layers[0].rgb;
+  const auto at = [&](int row, int col, int c) { return px[static_cast<std::size_t>((row * 64 + col) * 3 + c)]; };
+  BOOST_TEST(at(0, 0, 1) == 0.0f);   // outside the circle
+  BOOST_TEST(at(32, 32, 1) > 0.0f);  // zenith
+  double left = 0, right = 0;
+  for (int r = 0; r < 64; ++r)
+    for (int c = 0; c < 64; ++c) (c < 32 ? left : right) += at(r, c, 1);
+  BOOST_TEST(left > right);
+  const skyband::PngImage p = skyband::read_png_rgb8(png);
+  BOOST_TEST(p.width == 64);
+  BOOST_TEST(p.height == 64);
+}
