@@ -57,7 +57,8 @@ PolygonSoup parse_off(const std::string& name, const std::string& bytes) {
         throw InputError(where(line) + "counts " + std::to_string(vertex_count) + " " + std::to_string(face_count) +
                          " are too large");
       soup.faces_declared = static_cast<std::size_t>(face_count);
-      soup.vertices.reserve(static_cast<std::size_t>(std::min<long long>(vertex_count, 1 << 24)));
+      // never more vertices than the file has bytes for (a lying count must not allocate gigabytes)
+      soup.vertices.reserve(std::min(static_cast<std::size_t>(vertex_count), bytes.size() / 6));
       stage = vertex_count > 0 ? Stage::kVertices : face_count > 0 ? Stage::kFaces : Stage::kTrailing;
       return;
     }

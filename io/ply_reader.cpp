@@ -214,7 +214,7 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
       if (ix < 0 || iy < 0 || iz < 0)
         throw InputError(name + ":" + std::to_string(e.header_line) + ": PLY vertex element lacks an x, y or z property");
       have_vertices = true;
-      soup.vertices.reserve(std::min<std::size_t>(e.count, 1u << 24));
+      soup.vertices.reserve(std::min(e.count, bytes.size() / 3));  // a lying count must not allocate gigabytes
     }
     if (face_element) {
       if (ifaces < 0)

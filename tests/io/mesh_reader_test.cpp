@@ -389,3 +389,32 @@ BOOST_AUTO_TEST_CASE(every_error_path_names_file_line_and_value) {
   BOOST_TEST(contains(unknown, ".obj, .off, .ply, .stl"));
   BOOST_TEST(contains(error_of(kMine), "unknown mesh file extension"));  // a folder, no extension
 }
+
+BOOST_AUTO_TEST_CASE(truncated_files_load_or_fail_cleanly) {
+  // Every prefix (in steps of 5 bytes) of small files of each format must either load or throw
+  // InputError — never crash, hang or throw anything else. Also a PLY whose count lies.
+  const fs::path dir = temp_dir();
+  const std::vector<fs::path> sources{kDegenerate / "cgal_nm_edges_triple.off", kMine / "features.obj",
+                                      kMine / "crlf.ply", kMine / "two_triangles.stl", kDegenerate / "val3dity_304_2.obj"};
+  std::size_t loaded = 0, rejected = 0;
+  for (const auto& src : sources) {
+    std::ifstream in(src, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const fs::path f = dir / ("cut" + src.extension().string());
+    for (std::size_t n = 0; n < bytes.size(); n += 5) {
+      write_bytes(f, bytes.substr(0, n));
+      try {
+        read_mesh(f);
+        ++loaded;
+      } catch (const InputError&) {
+        ++rejected;
+      }
+    }
+  }
+  BOOST_TEST(rejected > 0u);
+  write_bytes(dir / "lying.ply",
+              "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+              "property float z\nend_header\n0 0 0\n");
+  BOOST_TEST(contains(error_of(dir / "lying.ply"), "file ends while reading vertex 1"));
+  fs::remove_all(dir);
+}
