@@ -99,7 +99,7 @@ struct SunPlacement {
 
 SunPlacement place_sun(const SkyOptions& o) {
   const bool by_angle = o.o_alt->count() > 0 || o.o_az->count() > 0;
-  const bool by_place = o.o_lat->count() > 0 || o.o_lon->count() > 0 || o.o_time->count() > 0;
+  const bool by_place = o.o_lat->count() > 0 || o.o_lon->count() > 0 || o.o_time->count() > 0 || o.o_tz->count() > 0;
   if (by_angle && by_place) throw InputError("give either --sun-altitude [--sun-azimuth] or --lat --lon --time, not both");
   if (by_angle) {
     if (o.o_alt->count() == 0) throw InputError("--sun-azimuth needs --sun-altitude");
