@@ -387,21 +387,24 @@ Spectrum Atmosphere::sky_radiance(const Vec3& view_dir, const Vec3& sun_dir, Sca
 //   Ψ_ms     = L_2nd / (1 − f_ms)                                                           (eq. 9)
 // with p_u = 1/(4π) (isotropic phase, also used for the second order, as in the paper).
 // Ψ_ms depends only on (r, μ_s) in a spherically symmetric atmosphere, so one table serves
-// every sun position. Directions: 16 Gauss–Legendre nodes in cos θ × 8 midpoint azimuths on
-// [0, π] (the field is symmetric about the sun's vertical plane); 32 trapezoid steps per ray.
+// every sun position. Directions: 16 Gauss–Legendre nodes in cos θ × 4 midpoint azimuths on
+// [0, π] (the field is symmetric about the sun's vertical plane); 20 trapezoid steps per ray on
+// the substituted variable below. Convergence, measured with bench_sky: against 32 × 16
+// directions and 64 steps the multiple/single ratios of zenith radiance and diffuse irradiance
+// (sun 4°–60°) change by ≤ 0.003, i.e. ≤ 0.5% of the multiple-scattering term.
 void Atmosphere::ensure_multiple_scattering_table() const {
   std::call_once(ms_->once, [this] { build_multiple_scattering_table(); });
 }
 
 void Atmosphere::build_multiple_scattering_table() const {
   ms_->table.assign(static_cast<std::size_t>(kMsR * kMsMu), Spectrum{});
-  constexpr int kTheta = 16, kPhi = 8, kSteps = 32;
+  constexpr int kTheta = 16, kPhi = 4, kSteps = 20;
   // Gauss–Legendre 16 nodes in cos θ ∈ [−1, 1] built from two GL8 panels ([−1,0] and [0,1]): the
   // horizon (cos θ = 0) is a kink of the integrand (ground hit vs sky), so no node straddles it.
   double ct[kTheta], wt[kTheta];
   {
     int n = 0;
-    gauss_legendre(-1.0, 1.0, 2, [&](double x, double w) { ct[n] = x, wt[n] = w, ++n; });
+    gauss_legendre(-1.0, 1.0, kTheta / 8, [&](double x, double w) { ct[n] = x, wt[n] = w, ++n; });
   }
   const double top = kTopRadius_m;
   tbb::parallel_for(0, kMsR * kMsMu, [&](int cell) {
@@ -427,18 +430,26 @@ void Atmosphere::build_multiple_scattering_table() const {
                                     : distance_to_sphere(rr, cos_t, top);
         ColumnLengths col;
         double prev_r = 0, prev_m = 0, prev_o = 0;
-        const double ds = t_end / kSteps;
+        // Nodes s(u), u = k/kSteps, trapezoid in u: s = t·u² for rays leaving the densest air
+        // at x (upward or sky-bound), s = t·(1 − (1 − u)²) for rays ending on the ground, so the
+        // steps are short where the aerosol layer is (a uniform step of 27 km on an 876-km grazing
+        // ray would straddle it).
+        const double du = 1.0 / kSteps;
+        double prev_jac = 0;
         for (int k = 0; k <= kSteps; ++k) {
-          const Vec3 y = x0 + (k * ds) * w;
+          const double u = k * du;
+          const double s_k = ground ? t_end * (1.0 - (1.0 - u) * (1.0 - u)) : t_end * u * u;
+          const double jac = ground ? 2.0 * t_end * (1.0 - u) : 2.0 * t_end * u;
+          const Vec3 y = x0 + s_k * w;
           const double ry = y.norm();
           const double rho_r = rayleigh_density(ry), rho_m = aerosol_density(ry), rho_o = ozone_density(ry);
           if (k > 0) {
-            col.rayleigh_m += 0.5 * ds * (prev_r + rho_r);
-            col.aerosol_m += 0.5 * ds * (prev_m + rho_m);
-            col.ozone_m += 0.5 * ds * (prev_o + rho_o);
+            col.rayleigh_m += 0.5 * du * (prev_r * prev_jac + rho_r * jac);
+            col.aerosol_m += 0.5 * du * (prev_m * prev_jac + rho_m * jac);
+            col.ozone_m += 0.5 * du * (prev_o * prev_jac + rho_o * jac);
           }
-          prev_r = rho_r, prev_m = rho_m, prev_o = rho_o;
-          const double tw = (k == 0 || k == kSteps ? 0.5 : 1.0) * ds * dw * kIsotropicPhase;
+          prev_r = rho_r, prev_m = rho_m, prev_o = rho_o, prev_jac = jac;
+          const double tw = (k == 0 || k == kSteps ? 0.5 : 1.0) * du * jac * dw * kIsotropicPhase;
           bool shadow = false;
           const ColumnLengths sc = column_to_top_table(ry, y.dot(sun) / ry, shadow);
           for (int q = 0; q < kSpectrumSamples; ++q) {

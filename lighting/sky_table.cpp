@@ -41,6 +41,7 @@ SkyTable::SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, Scattering
   const double horiz = std::hypot(sun_dir_.x(), sun_dir_.y());
   sun_azimuth_rad_ = horiz > 0.0 ? std::atan2(sun_dir_.x(), sun_dir_.y()) : 0.0;
   aerosol_g_ = atmosphere.params().aerosol_asymmetry_g;
+  has_multiple_ = orders == ScatteringOrders::Multiple;
   nodes_.resize(static_cast<std::size_t>(kAltitudeNodes * kAzimuthNodes));
   for (int i = 0; i < kAltitudeNodes; ++i) {
     const double u = static_cast<double>(i) / (kAltitudeNodes - 1);
@@ -81,16 +82,31 @@ void SkyTable::radiance_into(const Vec3& view_dir, Spectrum& out) const {
   catmull_rom_weights(a - j0, wa);
   const double cos_gamma = std::clamp(v.dot(sun_dir_), -1.0, 1.0);
   const double pr = rayleigh_phase(cos_gamma), pm = cornette_shanks_phase(cos_gamma, aerosol_g_);
-  out = Spectrum{};
+  // Gather the 16 nodes and their weights, then one pass per part (contiguous 41-sample loops
+  // the compiler vectorises); the multiple part is skipped for single-scattering tables.
+  const SkyRadianceParts* p[16];
+  double w[16];
   for (int di = 0; di < 4; ++di) {
     // Altitude ends: the node row is repeated (clamped) beyond the horizon and the zenith.
     const int ii = std::clamp(i0 - 1 + di, 0, kAltitudeNodes - 1);
     for (int dj = 0; dj < 4; ++dj) {
-      const int jj = fold_azimuth(j0 - 1 + dj, kAzimuthNodes);
-      const double w = wu[di] * wa[dj];
-      const SkyRadianceParts& p = node(ii, jj);
-      const double wr = w * pr, wm = w * pm;
-      for (int q = 0; q < kSpectrumSamples; ++q) out[q] += wr * p.rayleigh[q] + wm * p.aerosol[q] + w * p.multiple[q];
+      p[di * 4 + dj] = &node(ii, fold_azimuth(j0 - 1 + dj, kAzimuthNodes));
+      w[di * 4 + dj] = wu[di] * wa[dj];
+    }
+  }
+  double* o = out.v.data();
+  for (int q = 0; q < kSpectrumSamples; ++q) o[q] = 0.0;
+  for (int k = 0; k < 16; ++k) {
+    const double wr = w[k] * pr, wm = w[k] * pm;
+    const double* r = p[k]->rayleigh.v.data();
+    const double* m = p[k]->aerosol.v.data();
+    for (int q = 0; q < kSpectrumSamples; ++q) o[q] += wr * r[q] + wm * m[q];
+  }
+  if (has_multiple_) {
+    for (int k = 0; k < 16; ++k) {
+      const double wk = w[k];
+      const double* ms = p[k]->multiple.v.data();
+      for (int q = 0; q < kSpectrumSamples; ++q) o[q] += wk * ms[q];
     }
   }
   // Catmull–Rom can undershoot slightly where the data bend sharply; radiance is never negative.

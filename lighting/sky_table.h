@@ -39,6 +39,7 @@ class SkyTable {
   Vec3 sun_dir_;
   double sun_azimuth_rad_ = 0;
   double aerosol_g_ = 0;
+  bool has_multiple_ = false;
   std::vector<SkyRadianceParts> nodes_;
 };
 
