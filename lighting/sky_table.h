@@ -9,7 +9,11 @@
 // Only relative azimuth 0..π is stored: the sky is symmetric about the sun's vertical plane.
 // The altitude axis is quadratic (altitude = π/2·u²) so that the steep brightening of the last
 // degrees above the horizon is resolved. Interpolation: bicubic Catmull–Rom in (u, azimuth).
-// The measured interpolation error against Atmosphere::sky_radiance is in sky_table_test.cpp.
+// The measured interpolation error against Atmosphere::sky_radiance is in sky_table_test.cpp:
+// ≤ 0.31% relative for sun altitudes ≥ 4° (single and multiple scattering, including the
+// aureole). Limitation: with the sun below the horizon (twilight), the Earth's-shadow edge makes
+// the single-scattering table err by up to ~5% (of max(L, 1% of the sky maximum)); multiple
+// scattering (smooth) stays within 0.5%.
 #include <vector>
 
 #include "geometry/vec3.h"

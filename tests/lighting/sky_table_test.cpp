@@ -20,39 +20,57 @@ double deg(double d) { return d * kPi / 180.0; }
 int index_of_nm(double nm) { return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm)); }
 
 // Worst relative error of the table against direct integration over `n` random sky directions
-// (uniform on the upper hemisphere, fixed seed), at 400, 550 and 700 nm.
-double worst_table_error(const Atmosphere& atm, const SkyTable& table, ScatteringOrders orders, int n, unsigned seed) {
+// (uniform on the upper hemisphere, fixed seed), at 400, 550 and 700 nm. The error is relative
+// to max(direct, floor_fraction × the brightest sampled direct radiance at that wavelength);
+// floor_fraction = 0 gives the plain relative error.
+double worst_table_error(const Atmosphere& atm, const SkyTable& table, ScatteringOrders orders, int n, unsigned seed,
+                         double floor_fraction) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);
-  double worst = 0;
+  std::vector<Spectrum> direct, interp;
+  Spectrum brightest;
   for (int k = 0; k < n; ++k) {
     const double z = U(rng), phi = 2.0 * kPi * U(rng), s = std::sqrt(1.0 - z * z);
     const Vec3 v(s * std::cos(phi), s * std::sin(phi), z);
-    const Spectrum direct = atm.sky_radiance(v, table.sun_direction(), orders);
-    const Spectrum interp = table.radiance(v);
+    direct.push_back(atm.sky_radiance(v, table.sun_direction(), orders));
+    interp.push_back(table.radiance(v));
+    for (int i = 0; i < kSpectrumSamples; ++i) brightest[i] = std::max(brightest[i], direct.back()[i]);
+  }
+  double worst = 0;
+  for (int k = 0; k < n; ++k)
     for (double nm : {400.0, 550.0, 700.0}) {
       const int i = index_of_nm(nm);
-      worst = std::max(worst, std::abs(interp[i] / direct[i] - 1.0));
+      const double ref = std::max(direct[k][i], floor_fraction * brightest[i]);
+      worst = std::max(worst, std::abs(interp[k][i] - direct[k][i]) / ref);
     }
-  }
   return worst;
 }
 }  // namespace
 
 // Interpolation error of the table against Atmosphere::sky_radiance (the direct integral) over
-// 400 random directions per case, sun altitudes 4°, 17°, 60° (the paper's figures) and −2°
-// (twilight), single and multiple scattering. Bound 0.5% relative (the task's requirement),
-// everywhere including the aureole: the phase functions are applied exactly at look-up, so no
-// directions near the sun need to be excluded. The measured worst error is printed.
+// 400 random directions per case, sun altitudes 4°, 17°, 60° (the paper's figures), single and
+// multiple scattering. Bound 0.5% relative (the task's requirement), everywhere including the
+// aureole: the phase functions are applied exactly at look-up, so no directions near the sun
+// need to be excluded. Measured worst (printed): 0.31% (4°, single, near the horizon), ≤ 0.08%
+// otherwise.
+// Twilight (sun −2°): single scattering is exactly zero where the whole view ray lies in the
+// Earth's shadow, so a relative bound is meaningless there; the error is taken relative to
+// max(L, 1% of the brightest sampled L). Measured: 5.0% single, 0.47% multiple. The single-
+// scattering table is NOT within 0.5% in twilight: the Earth's shadow edge on the view rays is a
+// kink in direction that cells of ~2–4° smooth over (known limitation, sky_table.h); the bounds
+// below (10% single, 1% multiple, where the smooth multiple term dominates) guard against
+// regressions, they are not accuracy claims.
 BOOST_AUTO_TEST_CASE(interpolation_error_below_half_percent) {
   const Atmosphere atm(AtmosphereParams{});
-  for (double alt : {4.0, 17.0, 60.0}) {
+  for (double alt : {-2.0, 4.0, 17.0, 60.0}) {
     for (auto orders : {ScatteringOrders::Single, ScatteringOrders::Multiple}) {
       const SkyTable table(atm, direction_from_altitude_azimuth(deg(alt), deg(200)), orders);
-      const double worst = worst_table_error(atm, table, orders, 400, 7u + static_cast<unsigned>(alt));
+      const double floor_fraction = alt < 0.0 ? 0.01 : 0.0;
+      const double worst = worst_table_error(atm, table, orders, 400, 11u + static_cast<unsigned>(alt + 2.0), floor_fraction);
       BOOST_TEST_MESSAGE("sun " << alt << "°, " << (orders == ScatteringOrders::Single ? "single" : "multiple")
-                                << ": worst relative table error " << worst);
-      BOOST_TEST(worst < 0.005);
+                                << ": worst table error " << worst << (alt < 0.0 ? " (floor 1% of max)" : " (relative)"));
+      const double bound = alt >= 0.0 ? 0.005 : (orders == ScatteringOrders::Single ? 0.10 : 0.01);
+      BOOST_TEST(worst < bound);
     }
   }
 }
