@@ -171,6 +171,8 @@ void run_sky(const SkyOptions& o) {
     if (exr_path.extension() != ".exr") throw InputError("--out '" + o.out + "': the file name must end in .exr");
     png_path = exr_path;
     png_path.replace_extension(".png");
+    const std::filesystem::path dir = exr_path.has_parent_path() ? exr_path.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(dir)) throw InputError("--out '" + o.out + "': folder '" + dir.string() + "' does not exist");
     if (o.size < 16 || o.size > 8192) throw InputError("--size " + std::to_string(o.size) + ": must be in [16, 8192] pixels");
   }
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))
