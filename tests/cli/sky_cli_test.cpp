@@ -155,6 +155,7 @@ BOOST_AUTO_TEST_CASE(impossible_parameters_exit_2_naming_flag_and_value) {
       {"--lat 40 --lon 10 --time 2026-06-21T12:00", "--time", "2026-06-21T12:00"},
       {"--lat 95 --lon 10 --time 2026-06-21T12:00Z", "--lat", "95"},
       {"--sun-altitude 30 --out sky.txt", "--out", "sky.txt"},
+      {"--sun-altitude 30 --out /nonexistent_skyband_dir/a.exr", "--out", "/nonexistent_skyband_dir"},
   };
   for (const Case& c : cases) {
     const RunResult r = run(c.args);
