@@ -7,6 +7,7 @@
 #include <span>
 
 #include "geometry/input_error.h"
+#include "lighting/sun.h"
 
 namespace skyband {
 
@@ -305,8 +306,7 @@ SpaResult sun_position_spa(const SpaInput& in) {
 }
 
 Vec3 direction_from_altitude_azimuth_deg(double altitude_deg, double azimuth_deg) {
-  const double alt = altitude_deg * kDeg, az = azimuth_deg * kDeg;
-  return Vec3(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));
+  return direction_from_altitude_azimuth(altitude_deg * kDeg, azimuth_deg * kDeg);  // lighting/sun.h
 }
 
 // ---------------------------------------------------------------------------------------------
