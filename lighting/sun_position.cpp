@@ -1,5 +1,6 @@
 #include "lighting/sun_position.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -303,6 +304,13 @@ SpaResult sun_position_spa(const SpaInput& in) {
   const double gamma = std::atan2(std::sin(Hp), std::cos(Hp) * std::sin(phi) - std::tan(delta_p) * std::cos(phi)) / kDeg;
   r.azimuth_deg = limit_degrees(gamma + 180.0);
   return r;
+}
+
+double surface_incidence_deg(const SpaResult& sun, double slope_deg, double azm_rotation_deg) {
+  const double th = sun.zenith_deg * kDeg, w = slope_deg * kDeg;
+  const double gamma_astro = (sun.azimuth_deg - 180.0) * kDeg, g = azm_rotation_deg * kDeg;
+  const double c = std::cos(th) * std::cos(w) + std::sin(w) * std::sin(th) * std::cos(gamma_astro - g);
+  return std::acos(std::clamp(c, -1.0, 1.0)) / kDeg;
 }
 
 Vec3 direction_from_altitude_azimuth_deg(double altitude_deg, double azimuth_deg) {

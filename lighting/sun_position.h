@@ -71,6 +71,11 @@ struct SpaResult {
 // −2000…6000, pressure, temperature, |ΔT| ≤ 8000 s, refraction), naming the field and value.
 SpaResult sun_position_spa(const SpaInput& in);
 
+// Incidence angle (degrees) of the sun on a surface tilted `slope_deg` from horizontal whose
+// azimuth rotation `azm_rotation_deg` is measured from SOUTH, positive towards west (the SPA's
+// own convention, eq. 47): cos I = cos θ cos ω + sin ω sin θ cos(Γ − γ), Γ = azimuth − 180°.
+double surface_incidence_deg(const SpaResult& sun, double slope_deg, double azm_rotation_deg);
+
 // Julian day (UT) of a local date-time (SPA eq. 4, Gregorian from 1582-10-15).
 double julian_day(const LocalDateTime& t);
 

@@ -41,6 +41,13 @@ BOOST_AUTO_TEST_CASE(nrel_worked_example_zenith_azimuth) {
   BOOST_TEST(std::abs(r.azimuth_deg - 194.34024) < 1e-5, "azimuth " << r.azimuth_deg);
 }
 
+BOOST_AUTO_TEST_CASE(nrel_worked_example_surface_incidence) {
+  // Same example, surface slope 30°, azimuth rotation −10° (from south): incidence 25.18700°
+  // (Table A5.2, 5 decimals → 1e-5).
+  const SpaResult r = sun_position_spa(worked_example());
+  BOOST_TEST(std::abs(surface_incidence_deg(r, 30.0, -10.0) - 25.18700) < 1e-5, surface_incidence_deg(r, 30.0, -10.0));
+}
+
 BOOST_AUTO_TEST_CASE(nrel_worked_example_intermediates) {
   // Intermediate values of Table A5.2; each tolerance is half a unit of the printed last digit
   // (plus a little for double rounding).
