@@ -107,11 +107,11 @@ BOOST_AUTO_TEST_CASE(half_sky_occluded) {
 
 // Truncation error of the partial-sky integration at the default ε, against the full reference
 // over the same cache: ≤ 1% (method target) for m ∈ {0.02, 0.1, 0.3, 0.5}, several faces,
-// views, occlusion and skies (uniform, CIE overcast, CIE clear with a circumsolar peak and a
-// spectral tint). Also checks that truncation really happens for narrow lobes.
+// views, occlusion and skies (uniform; CIE clear with a circumsolar peak and a spectral tint). Also checks that truncation really happens for narrow lobes.
 BOOST_AUTO_TEST_CASE(truncation_error_vs_full_integral) {
   const Vec3 normals[] = {Vec3(0, 0, 1), Vec3(0.8, 0.6, 0), Vec3(-0.3, 0.4, 0.8)};
-  const TestSky skies[] = {{SkyKind::kUniform}, {SkyKind::kOvercast}, {SkyKind::kClear}};
+  // (Overcast behaves like uniform here and is covered by paper_scale_is_four; kept out for run time.)
+  const TestSky skies[] = {{SkyKind::kUniform}, {SkyKind::kClear}};
   const Material& al = find_material("aluminium-panel");
   double worst = 0;
   for (double m : {0.02, 0.1, 0.3, 0.5})
