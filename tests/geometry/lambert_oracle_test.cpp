@@ -296,7 +296,8 @@ BOOST_AUTO_TEST_CASE(culled_oracle_brackets_the_full_oracle) {
   cp.blocks = 4;
   cp.lots = 2;
   const gen::City city = gen::make_city(cp);
-  const auto pts = gen::street_points(city, 3, 5);
+  auto pts = gen::street_points(city, 3, 5);
+  for (const QueryPoint& q : gen::facade_points(city.buildings, 2, 0.0, 6)) pts.push_back(q);
   for (const QueryPoint& q : pts) {
     const double full = svf_union_oracle(q.position, q.normal, city.soup);
     // A radius that drops some buildings and a loose target, so the ring is really used.
@@ -307,6 +308,12 @@ BOOST_AUTO_TEST_CASE(culled_oracle_brackets_the_full_oracle) {
     // A tight target must converge to the full answer.
     const SvfBounds tight = svf_union_oracle_culled(q.position, q.normal, city.soup, 40, 1e-6);
     BOOST_TEST(std::abs(tight.estimate() - full) <= tight.half_width() + kExactAgreement);
+    // Front faces only (the city is closed outward-wound boxes on a ground seen from above):
+    // same answer with about half the triangles.
+    const SvfBounds front = svf_union_oracle_culled(q.position, q.normal, city.soup, 1e9, 1e-6, true);
+    BOOST_TEST(front.lo == front.hi);
+    BOOST_TEST(std::abs(front.estimate() - full) < kExactAgreement);
+    BOOST_TEST(front.near_triangles < 0.7 * svf_union_oracle_culled(q.position, q.normal, city.soup, 1e9, 1e-6).near_triangles);
   }
 }
 

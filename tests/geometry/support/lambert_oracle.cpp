@@ -232,7 +232,8 @@ double svf_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup) 
 }
 
 SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const TriangleSoup& soup,
-                                  double initial_radius_m, double target_half_width) {
+                                  double initial_radius_m, double target_half_width, bool front_faces_only,
+                                  double max_radius_m) {
   const Vec3 n = n_in.normalized();
   double z_top = -std::numeric_limits<double>::infinity();
   for (const Vec3& v : soup.vertices) z_top = std::max(z_top, v.z());
@@ -244,6 +245,7 @@ SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const Triangl
   for (const auto& t : soup.triangles) {
     Polygon3 tri = {soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
     if (!polygon_may_matter(tri, p, n)) continue;
+    if (front_faces_only && !((tri[1] - tri[0]).cross(tri[2] - tri[0]).dot(p - tri[0]) > 0)) continue;
     double lo_x = tri[0].x(), hi_x = lo_x, lo_y = tri[0].y(), hi_y = lo_y;
     for (const Vec3& v : tri) {
       lo_x = std::min(lo_x, v.x()); hi_x = std::max(hi_x, v.x());
@@ -277,7 +279,7 @@ SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const Triangl
       near.push_back({c0, c1, c1 + up, c0 + up});
     }
     result.lo = svf_union_oracle(p, n, near);
-    if (result.half_width() <= target_half_width) return result;
+    if (result.half_width() <= target_half_width || 2 * radius > max_radius_m) return result;
     radius *= 2;
   }
 }

@@ -85,10 +85,19 @@ struct SvfBounds {
   double estimate() const { return 0.5 * (lo + hi); }
   double half_width() const { return 0.5 * (hi - lo); }
 };
-// Grows the radius from initial_radius_m (×2 per step) until half_width ≤ target_half_width or
-// all triangles are near (then lo = hi exactly).
+// Grows the radius from initial_radius_m (×2 per step) until half_width ≤ target_half_width,
+// all triangles are near (then lo = hi exactly) or the radius exceeds max_radius_m (then the
+// bounds are returned as they are).
+//
+// front_faces_only: also drop triangles whose winding normal m = (v1 − v0) × (v2 − v0) does not
+// face P (m·(P − v0) ≤ 0). Exact only when every surface is the outward-wound boundary of a
+// closed solid, or a one-sided sheet seen from its front only (a ground plane under points on or
+// above it): every sight line entering a solid then crosses a front face first, so the union of
+// the front faces' projections is the union of all faces' projections. The generators of
+// scene_generators.h produce such scenes.
 SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n, const TriangleSoup& soup,
-                                  double initial_radius_m, double target_half_width);
+                                  double initial_radius_m, double target_half_width,
+                                  bool front_faces_only = false, double max_radius_m = 1e300);
 
 // ---- Closed forms (reference-notes §5; all dimensionless view factors) ----------------------
 
