@@ -1,0 +1,95 @@
+#pragma once
+// Scene files: a TOML description of what `skyband render` draws (toml++ is included only in
+// scene_file.cpp). Every key, its unit and its default:
+//
+//   meshes = ["building.obj", "ground.obj"]   # required; paths relative to the scene file
+//
+//   [materials]
+//   default = "diffuse-wall"                  # for usemtl names that are neither built-in nor assigned
+//   [materials.assign]                        # OBJ usemtl name -> built-in skyband material
+//   wall = "ceramic-tile"                     # (a usemtl name that IS a built-in name maps to itself)
+//
+//   [camera]
+//   position = [x, y, z]     # metres (x east, y north, z up); required
+//   look_at  = [x, y, z]     # metres; required
+//   up       = [0, 0, 1]
+//   fov_deg  = 45            # vertical field of view, degrees, (0, 180)
+//
+//   [sun]                    # EITHER altitude/azimuth ...
+//   altitude_deg = 50        # apparent altitude, degrees [-90, 90]
+//   azimuth_deg  = 180       # degrees clockwise from north
+//                            # ... OR place and time (NREL SPA, sun_position.h):
+//   latitude_deg, longitude_deg (east +), elevation_m = 0,
+//   time = "2024-06-21T10:00:00+02:00"  (ISO 8601; a TOML date-time also works),
+//   utc_offset_hours         # when the time carries no offset
+//
+//   [sky]
+//   model = "multiple"       # single | multiple | cie-1 … cie-15 | cie-overcast
+//   aod550 = 0.1             # aerosol optical depth at 550 nm
+//   angstrom_alpha = 1.3
+//   ozone_du = 300           # Dobson units
+//   zenith_luminance_cd_m2   # CIE skies only (default: gensky-style formula)
+//
+//   [quality]
+//   bands = 64               # N equal-weight bands, [1, 4096]
+//   tolerance = 0            # adaptive band refinement target (SVF units); 0 = fixed N. With
+//                            # refinement every point has its own band layout and therefore its
+//                            # own sky table: much slower shading (see renderer.h).
+//   epsilon = 1e-3           # truncation threshold of the specular sky march (seed §3), (0, 1)
+//   samples = 1              # samples per pixel, [1, 256]
+//   paper_scale = false      # Cook–Torrance 1982 ×4 scale instead of the microfacet form
+//
+//   [image]
+//   width = 640, height = 480  # pixels
+//   exposure                 # PNG exposure (> 0); default: automatic from the total layer
+//
+// Overrides: "key=value" strings with dotted keys (`sun.altitude_deg=17`, `image.width=320`,
+// `materials.assign.wall=painted-wall`); the value is read as a TOML value, and as a plain string
+// when it is not one (`sky.model=cie-12`). Unknown keys (in the file or an override) are errors.
+// Errors throw InputError naming "file:line:column", the key and the value, or "--set key=value".
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geometry/camera.h"
+#include "geometry/triangle_soup.h"
+#include "lighting/atmosphere.h"
+#include "lighting/sky_model.h"
+
+namespace skyband {
+
+struct SceneDescription {
+  std::filesystem::path file;                      // the scene file (messages, provenance)
+  std::vector<std::filesystem::path> meshes;       // resolved against the scene file's folder
+  std::string default_material = "diffuse-wall";
+  std::map<std::string, std::string> material_assignment;  // usemtl name -> built-in material
+  CameraSpec camera;                               // includes image width/height
+  double sun_altitude_deg = 50, sun_azimuth_deg = 180;
+  std::string sun_source = "given";                // "given" or the SPA inputs
+  AtmosphereParams atmosphere;
+  std::string sky_model = "multiple";
+  SkyModelSpec sky_spec;
+  int bands = 64;
+  double tolerance = 0;
+  double epsilon = 1e-3;
+  int samples = 1;
+  bool paper_scale = false;
+  std::optional<double> exposure;
+};
+
+// Parses scene text; `name` is used in messages and to resolve mesh paths (its parent folder).
+SceneDescription parse_scene(std::string_view text, const std::filesystem::path& name,
+                             std::span<const std::string> overrides = {});
+// Reads and parses a scene file (InputError if unreadable).
+SceneDescription load_scene_file(const std::filesystem::path& file, std::span<const std::string> overrides = {});
+
+// Reads every mesh and joins them into one soup whose material_names are built-in material
+// names (usemtl name → assignment → itself if built-in → default). `report` (optional) gets one
+// line per mesh.
+TriangleSoup load_scene_geometry(const SceneDescription& scene, std::vector<std::string>* report = nullptr);
+
+}  // namespace skyband
