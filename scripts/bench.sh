@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds skyband in Release and runs every benchmark (bench_*), each printing its own table.
-# Usage: scripts/bench.sh [arguments passed to every bench_* executable, e.g. --quick]
+# Usage: scripts/bench.sh [--quick]   (--quick is passed to the benchmarks whose --help offers it)
 # SKYBAND_BUILD_DIR selects the build folder (default: build-bench, always Release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +18,9 @@ cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${targets[@]}"
 status=0
 for t in "${targets[@]}"; do
   exe="$BUILD_DIR/bench/$t"
-  echo "=== $t $* ==="
-  "$exe" "$@" || { echo "$t failed with status $?" >&2; status=1; }
+  args=()
+  if [ "${1:-}" = "--quick" ] && "$exe" --help 2>/dev/null | grep -q -- "--quick"; then args=(--quick); fi
+  echo "=== $t ${args[*]:-} ==="
+  "$exe" "${args[@]}" || { echo "$t failed" >&2; status=1; }
 done
 exit $status
