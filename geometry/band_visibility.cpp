@@ -45,6 +45,7 @@ struct BandState {
   int e0, c, e1;  // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
   double error;   // estimated |midpoint error| in SVF units
   int depth;
+  bool from_breakpoints = false;  // made by a breakpoint split: the next split bisects
 };
 
 // Inserts [lo, hi] into a sorted merged list (touching intervals merge: shared end points of
@@ -87,6 +88,10 @@ struct BandVisibility::Impl {
   std::vector<int> active;            // indices of the planes of this pass, sorted by pdelta
   std::vector<double> active_keys;    // their pdelta
   std::vector<std::uint32_t> stack;
+  // Pencil pseudo-angles of triangle edges (nearly) parallel to the axis that changed some
+  // line's occlusion: where f(δ) steps (method.md §2). Refinement splits step bands there.
+  std::vector<double> breakpoints;
+  double breakpoint_span = 0;  // edges spanning less than this pseudo-angle count as parallel
   std::size_t triangle_tests = 0;
   std::size_t total_planes = 0;
 
@@ -161,6 +166,25 @@ struct BandVisibility::Impl {
     return true;
   }
 
+  // Conservative α-range (pseudo-angle units) of a local box [lx]×[lh]×[lz] seen along any sample
+  // line, clipped to the part outside the axis tails. False if nothing is left.
+  bool alpha_range(double lx_lo, double lx_hi, double lh_lo, double lh_hi, double lz_lo, double lz_hi,
+                   double& alo, double& ahi) const {
+    // ρ is the distance to the axis (the b coordinate of a point on its own sample line).
+    const double zl = std::max(lz_lo, 0.0);
+    const double dh = lh_lo > 0 ? lh_lo : (lh_hi < 0 ? -lh_hi : 0.0);
+    const double rho_min = std::sqrt(dh * dh + zl * zl);
+    const double hm = std::max(std::abs(lh_lo), std::abs(lh_hi));
+    const double rho_max = std::sqrt(hm * hm + lz_hi * lz_hi);
+    // The angle of (a, ρ) falls with a; it rises with ρ where a > 0 and falls where a < 0. The
+    // bounds are widened by far more than their rounding (they only cull).
+    alo = pseudo_angle(lx_hi, lx_hi >= 0 ? rho_min : rho_max) - 1e-12;
+    ahi = pseudo_angle(lx_lo, lx_lo >= 0 ? rho_max : rho_min) + 1e-12;
+    alo = std::max(alo, tail_p);
+    ahi = std::min(ahi, 2.0 - tail_p);
+    return alo < ahi;
+  }
+
   void traverse() {
     const auto& nodes = scene.bvh_nodes();
     if (nodes.empty() || active.empty()) return;
@@ -184,17 +208,8 @@ struct BandVisibility::Impl {
       int j0, j1;
       plane_range(plo, phi, j0, j1);
       if (j0 >= j1) continue;
-      // α-range along the sample lines (pseudo-angle of (a, ρ)), ρ the distance to the axis.
-      const double zl = std::max(lz_lo, 0.0);
-      const double dh = lh_lo > 0 ? lh_lo : (lh_hi < 0 ? -lh_hi : 0.0);
-      const double rho_min = std::hypot(dh, zl);
-      const double rho_max = std::hypot(std::max(std::abs(lh_lo), std::abs(lh_hi)), lz_hi);
-      // The angle of (a, ρ) falls with a; it rises with ρ where a > 0 and falls where a < 0.
-      double alo = pseudo_angle(lx_hi, lx_hi >= 0 ? rho_min : rho_max);
-      double ahi = pseudo_angle(lx_lo, lx_lo >= 0 ? rho_max : rho_min);
-      alo = std::max(alo, tail_p);
-      ahi = std::min(ahi, 2.0 - tail_p);
-      if (alo >= ahi) continue;  // only within the axis tails
+      double alo, ahi;
+      if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi)) continue;  // only in the axis tails
       bool all_covered = true;
       for (int j = j0; j < j1 && all_covered; ++j) all_covered = covered(planes[active[j]].occluded, alo, ahi);
       if (all_covered) continue;
@@ -233,6 +248,9 @@ struct BandVisibility::Impl {
     const double h_lo = std::min({L[0].y(), L[1].y(), L[2].y()}), h_hi = std::max({L[0].y(), L[1].y(), L[2].y()});
     const double z_lo = std::min({L[0].z(), L[1].z(), L[2].z()}), z_hi = std::max({L[0].z(), L[1].z(), L[2].z()});
     if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
+    double alo, ahi;
+    const double x_lo = std::min({L[0].x(), L[1].x(), L[2].x()}), x_hi = std::max({L[0].x(), L[1].x(), L[2].x()});
+    if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi)) return;
     int k0, k1;
     plane_range(plo, phi, k0, k1);
     k0 = std::max(k0, j0);
@@ -244,8 +262,10 @@ struct BandVisibility::Impl {
                           KPoint(v2.x(), v2.y(), v2.z()), KPoint(p.x(), p.y(), p.z())) == CGAL::COPLANAR)
       return;
     const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
+    bool contributed = false;
     for (int j = k0; j < k1; ++j) {
       Plane& pl = planes[active[j]];
+      if (covered(pl.occluded, alo, ahi)) continue;  // already hidden on this line (front-to-back)
       double val[3];
       int sg[3];
       for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
@@ -276,19 +296,31 @@ struct BandVisibility::Impl {
         ++n;
       }
       if (n < 2) continue;
-      add_segment(pl, ea[0], eb[0], ea[1], eb[1]);
+      contributed |= add_segment(pl, ea[0], eb[0], ea[1], eb[1]);
+    }
+    if (contributed && breakpoint_span > 0) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& a = L[k];
+        const Vec3& b = L[(k + 1) % 3];
+        if (a.z() <= 0 || b.z() <= 0) continue;
+        const double pa = pseudo_angle(a.y(), a.z()), pb = pseudo_angle(b.y(), b.z());
+        if (std::abs(pa - pb) < breakpoint_span) {
+          breakpoints.push_back(pa);
+          if (pb != pa) breakpoints.push_back(pb);
+        }
+      }
     }
   }
 
   // The in-plane segment (a, b) → occluded pseudo-angle span, clipped to the sky side b ≥ 0.
-  static void add_segment(Plane& pl, double a0, double b0, double a1, double b1) {
-    if (b0 <= 0 && b1 <= 0) return;
+  static bool add_segment(Plane& pl, double a0, double b0, double a1, double b1) {
+    if (b0 <= 0 && b1 <= 0) return false;
     double p0, p1;
     if (b0 < 0 || b1 < 0) {
       // Clip at the axis: the cut point lies on the axis, at α = 0 (a > 0) or α = π (a < 0).
       const double t = b0 / (b0 - b1);
       const double ac = a0 + t * (a1 - a0);
-      if (ac == 0) return;  // the segment passes through the point itself
+      if (ac == 0) return false;  // the segment passes through the point itself
       const double pc = ac > 0 ? 0.0 : 2.0;
       if (b0 < 0) {
         p0 = pc;
@@ -298,12 +330,14 @@ struct BandVisibility::Impl {
         p1 = pc;
       }
     } else {
-      if ((a0 == 0 && b0 == 0) || (a1 == 0 && b1 == 0)) return;  // an end point at the point
+      if ((a0 == 0 && b0 == 0) || (a1 == 0 && b1 == 0)) return false;  // an end point at the point
       p0 = pseudo_angle(a0, b0);
       p1 = pseudo_angle(a1, b1);
     }
     const double lo = std::min(p0, p1), hi = std::max(p0, p1);
-    if (hi > lo) insert_span(pl.occluded, lo, hi);
+    if (!(hi > lo) || covered(pl.occluded, lo, hi)) return false;
+    insert_span(pl.occluded, lo, hi);
+    return true;
   }
 
   static void finish_plane(Plane& pl) {
@@ -330,11 +364,24 @@ struct BandVisibility::Impl {
     if (prev < 2) emit(prev, 2);
   }
 
+  double pseudo_of_s(double s) const {
+    const double d = frame.delta_at(s);
+    return pseudo_angle(std::cos(d), std::sin(d));
+  }
+
+  double narrowest_band_pseudo(const std::vector<Band>& bands) const {
+    double w = 2;
+    for (const Band& b : bands) w = std::min(w, pseudo_of_s(b.s1) - pseudo_of_s(b.s0));
+    return w;
+  }
+
   double band_error(const BandState& b) const {
     if (b.e0 < 0) return 0;
     const double fm = planes[b.c].line_integral;
     const double ft = 0.5 * (planes[b.e0].line_integral + planes[b.e1].line_integral);
-    return (b.s1 - b.s0) * std::abs(ft - fm) / kPi;
+    // Midpoint-rule error on this band: asymptotically (T − M)/3 where f is smooth (T the
+    // trapezoid value from the edges); a step inside the band can make it up to |T − M|.
+    return (b.s1 - b.s0) * std::abs(ft - fm) / (3 * kPi);
   }
 
   void compute(const QueryPoint& q, VisibilityCache::PointResult& out) {
@@ -355,6 +402,10 @@ struct BandVisibility::Impl {
       prev_edge = st.e1;
       bands.push_back(st);
     }
+    breakpoints.clear();
+    // An edge counts as parallel to the axis when its pencil span is below 1/8 of the narrowest
+    // initial band's: then f(δ) changes within a small part of one band, like a step.
+    breakpoint_span = refine ? 0.125 * narrowest_band_pseudo(initial) : 0.0;
     run_pass(0);
     if (refine) refine_bands(bands);
     std::sort(bands.begin(), bands.end(), [](const BandState& a, const BandState& b) { return a.s0 < b.s0; });
@@ -385,6 +436,8 @@ struct BandVisibility::Impl {
       std::sort(order.begin(), order.end(), [&](int a, int b) {
         return bands[a].error > bands[b].error || (bands[a].error == bands[b].error && a < b);
       });
+      std::sort(breakpoints.begin(), breakpoints.end());
+      breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
       const std::size_t first_new = plane_count;
       double remaining = total;
       std::vector<BandState> added;
@@ -392,12 +445,13 @@ struct BandVisibility::Impl {
         if (remaining <= 0.5 * opt.tolerance) break;
         BandState& b = bands[i];
         if (b.error <= 0 || (b.s1 - b.s0) * 0.5 < min_weight) continue;
+        remaining -= 0.5 * b.error;
+        if (split_at_breakpoints(b, added)) continue;
         const double sc = 0.5 * (b.s0 + b.s1);
         BandState left{b.s0, sc, b.e0, -1, b.c, 0, b.depth + 1};
         BandState right{sc, b.s1, b.c, -1, b.e1, 0, b.depth + 1};
         left.c = add_plane(0.5 * (left.s0 + left.s1), frame.delta_at(0.5 * (left.s0 + left.s1)));
         right.c = add_plane(0.5 * (right.s0 + right.s1), frame.delta_at(0.5 * (right.s0 + right.s1)));
-        remaining -= 0.5 * b.error;
         b = left;
         added.push_back(right);
       }
@@ -405,6 +459,53 @@ struct BandVisibility::Impl {
       bands.insert(bands.end(), added.begin(), added.end());
       run_pass(first_new);
     }
+  }
+
+  // Splits band b at the recorded breakpoints strictly inside it (at most 4, the ones nearest
+  // its centre). Each piece gets one-sided edge planes just beside the breakpoint (f jumps there,
+  // so its value exactly on it says nothing about either side) and a centre plane.
+  bool split_at_breakpoints(BandState& b, std::vector<BandState>& added) {
+    if (b.from_breakpoints || b.e0 < 0) return false;
+    // Step signature: the centre line agrees with one edge line, so the change is in the other
+    // half; a smooth band (centre between the edges) is bisected instead.
+    const double f0 = planes[b.e0].line_integral, fc = planes[b.c].line_integral, f1 = planes[b.e1].line_integral;
+    if (!(std::abs(f1 - f0) > 1e-12)) return false;
+    const double r = (fc - f0) / (f1 - f0);
+    if (r > 0.1 && r < 0.9) return false;
+    const double pc = pseudo_of_s(0.5 * (b.s0 + b.s1));
+    const double p0 = r <= 0.1 ? pc : pseudo_of_s(b.s0), p1 = r <= 0.1 ? pseudo_of_s(b.s1) : pc;
+    const double margin = 1e-6 * (p1 - p0);
+    auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), p0 + margin);
+    auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), p1 - margin);
+    if (first >= last) return false;
+    double cuts[4];
+    int n = 0;
+    for (auto it = first; it != last && n < 4; ++it) {
+      const double s = std::sin(angle_of_pseudo(*it) - frame.beta_rad);
+      if (s <= b.s0 || s >= b.s1 || (n > 0 && s <= cuts[n - 1])) continue;
+      cuts[n++] = s;
+    }
+    if (n == 0) return false;
+    const double eta = 1e-9 * (b.s1 - b.s0);
+    double lo = b.s0;
+    int lo_edge = b.e0;
+    std::vector<BandState> pieces;
+    for (int k = 0; k <= n; ++k) {
+      const double hi = k < n ? cuts[k] : b.s1;
+      BandState piece{lo, hi, lo_edge, -1, -1, 0, b.depth + 1, true};
+      piece.c = add_plane(0.5 * (lo + hi), frame.delta_at(0.5 * (lo + hi)));
+      if (k < n) {
+        piece.e1 = add_plane(hi - eta, frame.delta_at(hi - eta));
+        lo_edge = add_plane(hi + eta, frame.delta_at(hi + eta));
+      } else {
+        piece.e1 = b.e1;
+      }
+      pieces.push_back(piece);
+      lo = hi;
+    }
+    b = pieces[0];
+    added.insert(added.end(), pieces.begin() + 1, pieces.end());
+    return true;
   }
 
   void single_plane(const QueryPoint& q, double delta) {

@@ -95,7 +95,11 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
       add_box(s, lo, lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)));
     }
     const Scene scene(s);
+    // Without refinement: which edges are recorded as refinement breakpoints depends on the
+    // order triangles are met in, so refined band layouts may differ (their SVFs agree within
+    // the tolerance, checked in svf_oracle_test); the intervals on given planes may not.
     VisibilityOptions fast, naive;
+    fast.tolerance = naive.tolerance = 0;
     fast.axis_tail_rad = naive.axis_tail_rad = 0;
     naive.accelerate = false;
     BandVisibility a(scene, fast), b(scene, naive);
