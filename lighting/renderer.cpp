@@ -41,7 +41,7 @@ class SkyRadianceGrid {
  public:
   static constexpr int kAltCells = 180, kAzCells = 720;
   static constexpr double kStep_rad = 0.5 * kPi / kAltCells;  // 0.5°
-  explicit SkyRadianceGrid(const SkyModel& sky, int threads)
+  SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads)
       : data_(static_cast<std::size_t>(kAltCells + 1) * (kAzCells + 1) * kSpectrumSamples) {
     in_arena(threads, [&] {
       tbb::parallel_for(0, kAltCells + 1, [&](int i) {
@@ -50,7 +50,7 @@ class SkyRadianceGrid {
         Spectrum l;
         for (int j = 0; j <= kAzCells; ++j) {
           const double az = j * kStep_rad;  // clockwise from north
-          sky.radiance_into(Vec3(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt)), l);
+          sky(Vec3(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt)), l);
           float* d = &data_[(static_cast<std::size_t>(i) * (kAzCells + 1) + static_cast<std::size_t>(j)) * kSpectrumSamples];
           for (int k = 0; k < kSpectrumSamples; ++k) d[k] = static_cast<float>(l[k]);
         }
@@ -186,9 +186,22 @@ void update_sun(GeometryPass& pass, const Scene& scene, const Vec3& sun_dir, con
   pass.sun_seconds = seconds_since(t0);
 }
 
+SkyLight sky_light_of(const SkyModel& sky) {
+  SkyLight l;
+  l.radiance = [&sky](const Vec3& d, Spectrum& out) { sky.radiance_into(d, out); };
+  l.sun_direction = sky.sun_direction();
+  l.sun_direct_normal = sky.sun_direct_normal();
+  return l;
+}
+
 RenderLayers shade(const GeometryPass& pass, const SkyModel& sky, std::span<const Material* const> slot_materials,
                    const RenderSettings& settings) {
-  if (!pass.sun_set || (pass.sun_direction - sky.sun_direction()).norm() > 1e-12)
+  return shade(pass, sky_light_of(sky), slot_materials, settings);
+}
+
+RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<const Material* const> slot_materials,
+                   const RenderSettings& settings) {
+  if (!pass.sun_set || (pass.sun_direction - sky.sun_direction).norm() > 1e-12)
     throw std::logic_error("shade: the geometry pass's sun visibility is not for this sky's sun (call update_sun)");
   if (slot_materials.size() != pass.material_slots.size())
     throw std::logic_error("shade: " + std::to_string(slot_materials.size()) + " materials for " +
@@ -196,10 +209,10 @@ RenderLayers shade(const GeometryPass& pass, const SkyModel& sky, std::span<cons
   for (const Material* m : slot_materials)
     if (!m) throw std::logic_error("shade: null material");
 
-  const Vec3 sun_dir = sky.sun_direction().normalized();
-  const Spectrum& e_dn = sky.sun_direct_normal();
-  SkyLutCache luts([&sky](const Vec3& d, Spectrum& out) { sky.radiance_into(d, out); });
-  const SkyRadianceGrid grid(sky, settings.threads);
+  const Vec3 sun_dir = sky.sun_direction.normalized();
+  const Spectrum& e_dn = sky.sun_direct_normal;
+  SkyLutCache luts(sky.radiance);
+  const SkyRadianceGrid grid(sky.radiance, settings.threads);
   const auto sky_radiance = [&grid](const Vec3& d, Spectrum& out) { grid(d, out); };
 
   std::vector<ShadedRgb> shaded(pass.surfaces.size());

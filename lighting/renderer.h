@@ -96,6 +96,19 @@ struct RenderLayers {
   std::vector<float> sun_diffuse, sun_specular, sky_diffuse, sky_specular, total;
 };
 
+// The light of phase 2 as plain data: any sky radiance function (W·m⁻²·sr⁻¹·nm⁻¹, world
+// direction; must be 0 at and below the horizon), the unit sun direction and its direct-normal
+// spectral irradiance (W·m⁻²·nm⁻¹). SkyModel gives one (sky_light_of); tests use analytic skies.
+struct SkyLight {
+  std::function<void(const Vec3&, Spectrum&)> radiance;
+  Vec3 sun_direction{0, 0, 1};
+  Spectrum sun_direct_normal;
+};
+SkyLight sky_light_of(const SkyModel& sky);
+
+RenderLayers shade(const GeometryPass& pass, const SkyLight& light, std::span<const Material* const> slot_materials,
+                   const RenderSettings& settings);
+
 // Phase 2. `slot_materials[k]` shades material slot k (size = pass.material_slots.size()). The
 // pass must have been updated for sky.sun_direction() (else std::logic_error).
 RenderLayers shade(const GeometryPass& pass, const SkyModel& sky, std::span<const Material* const> slot_materials,
