@@ -1,0 +1,110 @@
+#define BOOST_TEST_MODULE render_cli
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <set>
+#include <string>
+
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
+
+namespace fs = std::filesystem;
+using namespace skyband;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string err;
+};
+
+fs::path work_dir() {
+  const fs::path d = fs::path(SKYBAND_BINARY_DIR) / "test_output" / "render_cli";
+  fs::create_directories(d);
+  return d;
+}
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("SKYBAND_EXE");
+  BOOST_REQUIRE_MESSAGE(exe != nullptr, "SKYBAND_EXE is not set");
+  static int counter = 0;
+  const fs::path err_file = work_dir() / ("stderr_" + std::to_string(counter++) + ".txt");
+  const std::string cmd = std::string("'") + exe + "' " + args + " >/dev/null 2>'" + err_file.string() + "'";
+  RunResult r;
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+// tests/data/../../examples/scenes: the committed default scene (no macro names examples/).
+const std::string kScene = std::string(SKYBAND_TEST_DATA) + "/../../examples/scenes/default.toml";
+const std::string kTiny = " --set image.width=48 --set image.height=36 --set quality.bands=8";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(renders_default_scene_to_exr_and_png) {
+  const fs::path exr = work_dir() / "tiny.exr", png = work_dir() / "tiny.png";
+  fs::remove(exr);
+  fs::remove(png);
+  const RunResult r = run("render --quiet --scene '" + kScene + "' --out '" + exr.string() + "'" + kTiny);
+  BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  BOOST_REQUIRE(fs::exists(exr));
+  BOOST_REQUIRE(fs::exists(png));
+  const ExrImage img = read_exr_layers(exr);
+  BOOST_TEST(img.width == 48);
+  BOOST_TEST(img.height == 36);
+  std::set<std::string> names;
+  for (const auto& l : img.layers) names.insert(l.name);
+  for (const char* n : {"sun_diffuse", "sun_specular", "sky_diffuse", "sky_specular", "total"}) BOOST_TEST(names.count(n) == 1u);
+  for (const char* a : {"skyband_version", "skyband_command", "skyband_sun", "skyband_sky", "skyband_units"})
+    BOOST_TEST(img.attributes.count(a) == 1u);
+  BOOST_TEST(img.attributes.at("skyband_sun").find("altitude 50.0000") != std::string::npos);  // default.toml sun
+  for (const auto& l : img.layers)
+    for (float v : l.rgb) BOOST_TEST(std::isfinite(v));
+  const PngImage p = read_png_rgb8(png);
+  BOOST_TEST(p.width == 48);
+  BOOST_TEST(p.height == 36);
+}
+
+BOOST_AUTO_TEST_CASE(overrides_change_the_image) {
+  const fs::path a = work_dir() / "sun50.exr", b = work_dir() / "sun8.exr";
+  BOOST_REQUIRE(run("render --quiet --scene '" + kScene + "' --out '" + a.string() + "'" + kTiny).exit_code == 0);
+  BOOST_REQUIRE(run("render --quiet --scene '" + kScene + "' --out '" + b.string() + "'" + kTiny + " --set sun.altitude_deg=8").exit_code == 0);
+  const ExrImage ia = read_exr_layers(a), ib = read_exr_layers(b);
+  BOOST_TEST(ib.attributes.at("skyband_sun").find("altitude 8.0000") != std::string::npos);
+  BOOST_TEST((ia.layers.back().rgb != ib.layers.back().rgb));
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_the_key) {
+  struct Case {
+    std::string args, expect;
+  };
+  const std::string base = "render --quiet --scene '" + kScene + "' --out '" + (work_dir() / "bad.exr").string() + "'";
+  const Case cases[] = {
+      {base + " --set sun.altitude_deg=95", "sun.altitude_deg"},
+      {base + " --set image.width=-3", "image.width"},
+      {base + " --set sky.model=purple", "sky.model"},
+      {base + " --set materials.assign.facade=marble", "materials.assign.facade"},
+      {base + " --set camera.fov=40", "camera.fov"},
+      {base + " --exposure -1", "--exposure"},
+      {"render --scene /nonexistent.toml", "/nonexistent.toml"},
+      {"render --scene '" + kScene + "' --out x.png", "--out"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run(c.args);
+    BOOST_TEST(r.exit_code == 2, c.args << " → exit " << r.exit_code);
+    BOOST_TEST(r.err.find(c.expect) != std::string::npos, c.args << " → " << r.err);
+  }
+  BOOST_TEST(!fs::exists(work_dir() / "bad.exr"));  // nothing half-written
+}
