@@ -10,7 +10,7 @@
 //   svf           cosine-weighted sky view factor (1 open horizontal face, 0.5 open wall),
 //   sky_exposure  visible sky solid angle in front of the face / 2π,
 // and is written atomically. Default accuracy: adaptive band refinement to an estimated absolute
-// SVF error of 2.5e-4 (measured max error ≤ 1e-3; docs/geometry.md).
+// SVF error of 5e-4 (measured max error ≤ 1e-3; docs/geometry.md).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -151,7 +151,7 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
   cmd->add_option("--out", args->out, "Output CSV (input rows + svf, sky_exposure), written atomically");
   auto* bands = cmd->add_option("--bands", args->bands, "Fixed number of equal-weight bands (the paper's method, no refinement)");
   auto* tol = cmd->add_option("--tolerance", args->tolerance,
-                              "Adaptive refinement to this estimated absolute SVF error (default 2.5e-4)");
+                              "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");
   bands->excludes(tol);
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores; results do not depend on it)");
   cmd->add_flag("--quiet", args->quiet, "No progress or summary on stderr");

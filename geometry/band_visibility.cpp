@@ -40,13 +40,46 @@ struct Plane {
   double line_integral = 0;    // ∫_visible sin²α dα (uniform sky, for refinement)
 };
 
+// A band of the refined partition, in δ (radians). With refinement, its lines are the two edges
+// and the δ-midpoint, combined by the three-node rule of band_rule() below.
 struct BandState {
-  double s0, s1;
+  double d0, d1;
   int e0, c, e1;  // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
-  double error;   // estimated |midpoint error| in SVF units
-  int depth;
+  double error = 0;  // estimated error of the band's midpoint value, SVF units
+  int depth = 0;
   bool from_breakpoints = false;  // made by a breakpoint split: the next split bisects
 };
+
+// Weights (w0, wm, w1) of the interpolatory rule on nodes δ0, δm, δ1 for ∫_{δ0}^{δ1} g(δ) cos(δ − β) dδ
+// (exact for quadratic g), and m0 = ∫ cos(δ − β) dδ, the midpoint rule's weight. With t = δ − δm,
+// h = (δ1 − δ0)/2, γ = δm − β, the moments of cos(t + γ) over [−h, h] are
+//   m0 = 2 sin h cos γ,  m1 = −2 sin γ (sin h − h cos h),  m2 = 2 cos γ ((h² − 2) sin h + 2h cos h),
+// and the Lagrange weights are w0 = (m2 − h m1)/2h², wm = (h² m0 − m2)/h², w1 = (m2 + h m1)/2h².
+// Integrating in δ, not in s = sin(δ − β), matters: f is smooth in δ but has a square-root
+// singularity in s at the face's own plane (δ − β = ±π/2).
+struct BandRule {
+  double w0, wm, w1, m0;
+};
+BandRule band_rule(double d0, double d1, double beta) {
+  const double h = 0.5 * (d1 - d0), g = 0.5 * (d0 + d1) - beta;
+  double s1, s2;  // ∫_0^h t sin t dt, ∫_0^h t² cos t dt (Taylor series where they cancel)
+  if (h < 0.05) {
+    const double h2 = h * h, h3 = h2 * h;
+    s1 = h3 * (1.0 / 3 - h2 * (1.0 / 30 - h2 * (1.0 / 840 - h2 / 45360)));
+    s2 = h3 * (1.0 / 3 - h2 * (1.0 / 10 - h2 * (1.0 / 168 - h2 / 6480)));
+  } else {
+    s1 = std::sin(h) - h * std::cos(h);
+    s2 = (h * h - 2) * std::sin(h) + 2 * h * std::cos(h);
+  }
+  BandRule r;
+  r.m0 = 2 * std::sin(h) * std::cos(g);
+  const double m1 = -2 * std::sin(g) * s1, m2 = 2 * std::cos(g) * s2;
+  if (h <= 0) return {0, 0, 0, 0};
+  r.w0 = (m2 - h * m1) / (2 * h * h);
+  r.wm = (h * h * r.m0 - m2) / (h * h);
+  r.w1 = (m2 + h * m1) / (2 * h * h);
+  return r;
+}
 
 // Inserts [lo, hi] into a sorted merged list (touching intervals merge: shared end points of
 // triangles sharing an edge are bit-identical, so a closed surface leaves no gap).
@@ -364,25 +397,37 @@ struct BandVisibility::Impl {
     if (prev < 2) emit(prev, 2);
   }
 
-  double pseudo_of_s(double s) const {
-    const double d = frame.delta_at(s);
-    return pseudo_angle(std::cos(d), std::sin(d));
-  }
+  static double pseudo_of_delta(double d) { return pseudo_angle(std::cos(d), std::sin(d)); }
 
-  double narrowest_band_pseudo(const std::vector<Band>& bands) const {
+  double narrowest_band_pseudo(const std::vector<BandState>& bands) const {
     double w = 2;
-    for (const Band& b : bands) w = std::min(w, pseudo_of_s(b.s1) - pseudo_of_s(b.s0));
+    for (const BandState& b : bands) w = std::min(w, pseudo_of_delta(b.d1) - pseudo_of_delta(b.d0));
     return w;
   }
 
+  // |rule − midpoint|/π: the midpoint value's error where f is smooth, and a generous bound on
+  // the three-node value the cache carries; a step inside the band is located exactly instead
+  // (split_at_breakpoints).
   double band_error(const BandState& b) const {
     if (b.e0 < 0) return 0;
-    const double fm = planes[b.c].line_integral;
-    const double ft = 0.5 * (planes[b.e0].line_integral + planes[b.e1].line_integral);
-    // Midpoint-rule error on this band: asymptotically (T − M)/3 where f is smooth (T the
-    // trapezoid value from the edges); a step inside the band can make it up to |T − M|.
-    return (b.s1 - b.s0) * std::abs(ft - fm) / (3 * kPi);
+    const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
+    const double q = r.w0 * planes[b.e0].line_integral + r.wm * planes[b.c].line_integral +
+                     r.w1 * planes[b.e1].line_integral;
+    double e = std::abs(q - r.m0 * planes[b.c].line_integral) / kPi;
+    // A band against the face's own plane (δ − β = ±π/2) is bounded by the full variation of its
+    // lines: there the weight vanishes, neighbours' walls coplanar with the face make grazing
+    // steps that three lines can miss, and δ-bisection shrinks such a band fourfold in weight.
+    const double edge = 1e-9 + 1e-9 * (frame.delta_max_rad - frame.delta_min_rad);
+    const bool against_plane = (b.d1 >= frame.delta_max_rad - edge && frame.delta_max_rad < kPi - edge) ||
+                               (b.d0 <= frame.delta_min_rad + edge && frame.delta_min_rad > edge);
+    if (against_plane) {
+      const double f0 = planes[b.e0].line_integral, fc = planes[b.c].line_integral, f1 = planes[b.e1].line_integral;
+      e = std::max(e, r.m0 * (std::max({f0, fc, f1}) - std::min({f0, fc, f1})) / kPi);
+    }
+    return e;
   }
+
+  double s_of(double d) const { return std::sin(d - frame.beta_rad); }
 
   void compute(const QueryPoint& q, VisibilityCache::PointResult& out) {
     begin_point(q);
@@ -394,43 +439,88 @@ struct BandVisibility::Impl {
     const bool refine = opt.tolerance > 0;
     std::vector<BandState> bands;
     bands.reserve(initial.size() * 2);
-    int prev_edge = refine ? add_plane(initial[0].s0, frame.delta_at(initial[0].s0)) : -1;
-    for (const Band& b : initial) {
-      BandState st{b.s0, b.s1, prev_edge, -1, -1, 0, 0};
-      st.c = add_plane(b.s_centre(), frame.delta_at(b.s_centre()));
-      if (refine) st.e1 = add_plane(b.s1, frame.delta_at(b.s1));
-      prev_edge = st.e1;
-      bands.push_back(st);
+    for (const Band& b : initial) bands.push_back(BandState{frame.delta_at(b.s0), frame.delta_at(b.s1), -1, -1, -1});
+    bands.front().d0 = frame.delta_min_rad;
+    bands.back().d1 = frame.delta_max_rad;
+    if (!refine) {
+      // The paper's bands: one sample plane at each band's weight median (seed eq. 1, d_l = 1/N).
+      for (std::size_t i = 0; i < bands.size(); ++i) bands[i].c = add_plane(initial[i].s_centre(), frame.delta_at(initial[i].s_centre()));
+      run_pass(0);
+      for (std::size_t i = 0; i < bands.size(); ++i) emit_record(out, initial[i].s0, initial[i].s1, bands[i].c);
+      return;
+    }
+    // The outermost edge lines are sampled just inside the face's sky: exactly at δ_min/δ_max lie
+    // the horizon plane and the face's own plane, where coplanar ground or neighbouring walls
+    // give f a value that is the limit of neither side.
+    const double eta = 1e-9 * (frame.delta_max_rad - frame.delta_min_rad);
+    int prev_edge = add_plane_at(bands.front().d0 + eta);
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      BandState& b = bands[i];
+      b.e0 = prev_edge;
+      b.c = add_plane_at(0.5 * (b.d0 + b.d1));
+      b.e1 = add_plane_at(i + 1 == bands.size() ? b.d1 - eta : b.d1);
+      prev_edge = b.e1;
     }
     breakpoints.clear();
     // An edge counts as parallel to the axis when its pencil span is below 1/8 of the narrowest
     // initial band's: then f(δ) changes within a small part of one band, like a step.
-    breakpoint_span = refine ? 0.125 * narrowest_band_pseudo(initial) : 0.0;
+    breakpoint_span = 0.125 * narrowest_band_pseudo(bands);
     run_pass(0);
-    if (refine) refine_bands(bands);
-    std::sort(bands.begin(), bands.end(), [](const BandState& a, const BandState& b) { return a.s0 < b.s0; });
+    refine_bands(bands);
+    std::sort(bands.begin(), bands.end(), [](const BandState& a, const BandState& b) { return a.d0 < b.d0; });
+    // Each band's three lines carry the rule's weights, written as consecutive records whose
+    // widths in s are the weights (so Σ widths = W and each record's s-range stays inside its
+    // band); an edge line shared with the next band becomes one record. A band whose rule has a
+    // negative weight (possible only for wide bands against the face's own plane) falls back to
+    // its midpoint line.
+    int open_plane = -1;
+    double open_s0 = 0, open_s1 = 0;
     for (const BandState& b : bands) {
-      BandRecord r;
-      r.s0 = static_cast<float>(b.s0);
-      r.s1 = static_cast<float>(b.s1);
-      r.delta_rad = static_cast<float>(planes[b.c].delta);
-      r.first_interval = static_cast<std::uint32_t>(out.intervals.size());
-      out.bands.push_back(r);
-      visible_intervals(planes[b.c], out.intervals);
+      const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
+      const double s0 = s_of(b.d0), s1 = s_of(b.d1);
+      const bool rule_ok = r.w0 >= 0 && r.wm >= 0 && r.w1 >= 0;
+      if (open_plane >= 0 && !(rule_ok && open_plane == b.e0)) {
+        emit_record(out, open_s0, open_s1, open_plane);
+        open_plane = -1;
+      }
+      if (!rule_ok) {
+        emit_record(out, s0, s1, b.c);
+        continue;
+      }
+      const double a = s0 + r.w0, c = a + r.wm;
+      if (open_plane == b.e0) {
+        emit_record(out, open_s0, a, b.e0);
+      } else {
+        emit_record(out, s0, a, b.e0);
+      }
+      emit_record(out, a, c, b.c);
+      open_plane = b.e1;
+      open_s0 = c;
+      open_s1 = s1;
     }
+    if (open_plane >= 0) emit_record(out, open_s0, open_s1, open_plane);
   }
 
-  // Adaptive refinement: split (in weight, at the centre plane) the bands whose estimated
-  // midpoint error is largest until the estimated total is below the tolerance. A split band's
-  // centre becomes an edge of both halves, so each split costs two new planes.
+  int add_plane_at(double delta) { return add_plane(s_of(delta), delta); }
+
+  void emit_record(VisibilityCache::PointResult& out, double s0, double s1, int plane) const {
+    BandRecord r;
+    r.s0 = static_cast<float>(s0);
+    r.s1 = static_cast<float>(s1);
+    r.delta_rad = static_cast<float>(planes[plane].delta);
+    r.first_interval = static_cast<std::uint32_t>(out.intervals.size());
+    out.bands.push_back(r);
+    visible_intervals(planes[plane], out.intervals);
+  }
+
+  // Adaptive refinement: split the bands whose estimated error is largest until the estimated
+  // total is below the tolerance — at located steps when the band shows one, else at the
+  // δ-midpoint (whose line becomes an edge of both halves: two new planes per split).
   void refine_bands(std::vector<BandState>& bands) {
-    const double min_weight = frame.total_weight() / (opt.bands * std::ldexp(1.0, opt.max_refine_depth));
     for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
       double total = 0;
       for (BandState& b : bands) total += (b.error = band_error(b));
       if (total <= opt.tolerance) return;
-      // Split the largest errors first until the rest (and the halves, assumed ≤ half each)
-      // would fit the budget.
       std::vector<int> order(bands.size());
       for (std::size_t i = 0; i < bands.size(); ++i) order[i] = static_cast<int>(i);
       std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -442,16 +532,18 @@ struct BandVisibility::Impl {
       double remaining = total;
       std::vector<BandState> added;
       for (int i : order) {
+        // Split the largest errors first until the rest (and the halves, assumed ≤ half each)
+        // would fit the budget.
         if (remaining <= 0.5 * opt.tolerance) break;
         BandState& b = bands[i];
-        if (b.error <= 0 || (b.s1 - b.s0) * 0.5 < min_weight) continue;
+        if (b.error <= 0 || b.depth >= opt.max_refine_depth) continue;
         remaining -= 0.5 * b.error;
         if (split_at_breakpoints(b, added)) continue;
-        const double sc = 0.5 * (b.s0 + b.s1);
-        BandState left{b.s0, sc, b.e0, -1, b.c, 0, b.depth + 1};
-        BandState right{sc, b.s1, b.c, -1, b.e1, 0, b.depth + 1};
-        left.c = add_plane(0.5 * (left.s0 + left.s1), frame.delta_at(0.5 * (left.s0 + left.s1)));
-        right.c = add_plane(0.5 * (right.s0 + right.s1), frame.delta_at(0.5 * (right.s0 + right.s1)));
+        const double dm = 0.5 * (b.d0 + b.d1);
+        BandState left{b.d0, dm, b.e0, -1, b.c, 0, b.depth + 1};
+        BandState right{dm, b.d1, b.c, -1, b.e1, 0, b.depth + 1};
+        left.c = add_plane_at(0.5 * (left.d0 + left.d1));
+        right.c = add_plane_at(0.5 * (right.d0 + right.d1));
         b = left;
         added.push_back(right);
       }
@@ -461,9 +553,9 @@ struct BandVisibility::Impl {
     }
   }
 
-  // Splits band b at the recorded breakpoints strictly inside it (at most 4, the ones nearest
-  // its centre). Each piece gets one-sided edge planes just beside the breakpoint (f jumps there,
-  // so its value exactly on it says nothing about either side) and a centre plane.
+  // Splits band b at the recorded breakpoints inside the half where its lines show a step (at
+  // most 4). Each piece gets one-sided edge planes just beside the breakpoint (f jumps there, so
+  // its value exactly on it says nothing about either side) and a centre plane.
   bool split_at_breakpoints(BandState& b, std::vector<BandState>& added) {
     if (b.from_breakpoints || b.e0 < 0) return false;
     // Step signature: the centre line agrees with one edge line, so the change is in the other
@@ -472,8 +564,9 @@ struct BandVisibility::Impl {
     if (!(std::abs(f1 - f0) > 1e-12)) return false;
     const double r = (fc - f0) / (f1 - f0);
     if (r > 0.1 && r < 0.9) return false;
-    const double pc = pseudo_of_s(0.5 * (b.s0 + b.s1));
-    const double p0 = r <= 0.1 ? pc : pseudo_of_s(b.s0), p1 = r <= 0.1 ? pseudo_of_s(b.s1) : pc;
+    const double dm = 0.5 * (b.d0 + b.d1);
+    const double lo_d = r <= 0.1 ? dm : b.d0, hi_d = r <= 0.1 ? b.d1 : dm;
+    const double p0 = pseudo_of_delta(lo_d), p1 = pseudo_of_delta(hi_d);
     const double margin = 1e-6 * (p1 - p0);
     auto first = std::upper_bound(breakpoints.begin(), breakpoints.end(), p0 + margin);
     auto last = std::lower_bound(breakpoints.begin(), breakpoints.end(), p1 - margin);
@@ -481,30 +574,30 @@ struct BandVisibility::Impl {
     double cuts[4];
     int n = 0;
     for (auto it = first; it != last && n < 4; ++it) {
-      const double s = std::sin(angle_of_pseudo(*it) - frame.beta_rad);
-      if (s <= b.s0 || s >= b.s1 || (n > 0 && s <= cuts[n - 1])) continue;
-      cuts[n++] = s;
+      const double d = angle_of_pseudo(*it);
+      if (d <= b.d0 || d >= b.d1 || (n > 0 && d <= cuts[n - 1])) continue;
+      cuts[n++] = d;
     }
     if (n == 0) return false;
-    const double eta = 1e-9 * (b.s1 - b.s0);
-    double lo = b.s0;
+    const double eta = 1e-9 * (b.d1 - b.d0);
+    double lo = b.d0;
     int lo_edge = b.e0;
-    std::vector<BandState> pieces;
+    BandState pieces[5];
     for (int k = 0; k <= n; ++k) {
-      const double hi = k < n ? cuts[k] : b.s1;
-      BandState piece{lo, hi, lo_edge, -1, -1, 0, b.depth + 1, true};
-      piece.c = add_plane(0.5 * (lo + hi), frame.delta_at(0.5 * (lo + hi)));
+      const double hi = k < n ? cuts[k] : b.d1;
+      BandState& piece = pieces[k];
+      piece = BandState{lo, hi, lo_edge, -1, -1, 0, b.depth + 1, true};
+      piece.c = add_plane_at(0.5 * (lo + hi));
       if (k < n) {
-        piece.e1 = add_plane(hi - eta, frame.delta_at(hi - eta));
-        lo_edge = add_plane(hi + eta, frame.delta_at(hi + eta));
+        piece.e1 = add_plane_at(hi - eta);
+        lo_edge = add_plane_at(hi + eta);
       } else {
         piece.e1 = b.e1;
       }
-      pieces.push_back(piece);
       lo = hi;
     }
     b = pieces[0];
-    added.insert(added.end(), pieces.begin() + 1, pieces.end());
+    added.insert(added.end(), pieces + 1, pieces + n + 1);
     return true;
   }
 
