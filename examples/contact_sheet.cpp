@@ -109,13 +109,16 @@ SheetImage make_contact_sheet(const std::vector<SheetTile>& tiles, int columns) 
   s.height = kMargin + rows * (kLabel + th + kMargin);
   // Background: linear 0.02 (dark grey after tone mapping).
   s.rgb.assign(static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height) * 3, 0.02f);
+  // One label scale for the whole sheet: 2× only if every label fits its tile at 2×.
+  int scale = kScale;
+  for (const SheetTile& t : tiles)
+    if (text_width(t.label, kScale) > tw) scale = 1;
   for (std::size_t k = 0; k < tiles.size(); ++k) {
     const SheetTile& t = tiles[k];
     const int cx = kMargin + static_cast<int>(k % static_cast<std::size_t>(cols)) * (tw + kMargin);
     const int cy = kMargin + static_cast<int>(k / static_cast<std::size_t>(cols)) * (kLabel + th + kMargin);
     // Linear 50 maps to white (ACES fit saturates: tone value > 0.99). Labels wider than the
-    // tile are drawn at 1× and cut at the tile's edge.
-    const int scale = text_width(t.label, kScale) <= tw ? kScale : 1;
+    // tile are cut at the tile's edge.
     const std::size_t fit = static_cast<std::size_t>(std::max(0, tw / (6 * scale)));
     draw_text(s, cx, cy + (kScale - scale) * 7, t.label.substr(0, std::min(fit, t.label.size())), 50.0f, scale);
     for (int y = 0; y < t.height; ++y)
