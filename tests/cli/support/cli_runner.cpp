@@ -1,0 +1,44 @@
+#include "cli/support/cli_runner.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace skyband::test {
+
+std::filesystem::path test_folder(const std::string& name) {
+  const std::filesystem::path d = std::filesystem::path(SKYBAND_BINARY_DIR) / "test_output" / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+CliResult run_skyband(const std::string& args) {
+  const char* exe = std::getenv("SKYBAND_EXE");
+  if (!exe) throw std::runtime_error("SKYBAND_EXE is not set (run the test through ctest)");
+  static int counter = 0;
+  const auto err_file = std::filesystem::path(SKYBAND_BINARY_DIR) / "test_output" /
+                        ("cli_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".txt");
+  std::filesystem::create_directories(err_file.parent_path());
+  const std::string cmd = std::string("'") + exe + "' " + args + " 2>'" + err_file.string() + "'";
+  CliResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("popen failed: " + cmd);
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+}  // namespace skyband::test

@@ -1,0 +1,138 @@
+#define BOOST_TEST_MODULE svf_cli
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "cli/support/cli_runner.h"
+
+namespace tt = boost::test_tools;
+namespace fs = std::filesystem;
+using skyband::test::run_skyband;
+
+namespace {
+
+// A closed 10 m cube [0,10]³ as OBJ quads (our own geometry).
+void write_cube(const fs::path& file) {
+  std::ofstream f(file);
+  f << "# cube\n";
+  for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
+  f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+}  // namespace
+
+// End to end: rows in input order, pass-through columns kept, svf/sky_exposure appended.
+// Closed forms: on the cube's top face SVF = 1 and exposure 1; inside 0; open ground far away
+// (500 m, the cube subtends < 3e-4 of the sky there: reference-notes §5 rectangle formula) ≈ 1;
+// an open wall facing away from the cube: 0.5.
+BOOST_AUTO_TEST_CASE(end_to_end_values_and_pass_through) {
+  const fs::path d = skyband::test::test_folder("svf_cli_e2e");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz,note\n"
+                                  "a,5,5,10,0,0,1,\"top, centre\"\n"
+                                  "b,5,5,5,0,0,1,inside\n"
+                                  "c,500,500,0,0,0,1,far\n"
+                                  "d,-20,5,3,-1,0,0,wall facing west\n";
+  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                             q(d / "out.csv") + " --threads 2");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  std::istringstream out(slurp(d / "out.csv"));
+  std::string line;
+  std::getline(out, line);
+  BOOST_TEST(line == "id,x,y,z,nx,ny,nz,note,svf,sky_exposure");
+  std::vector<std::pair<double, double>> v;
+  std::vector<std::string> ids;
+  while (std::getline(out, line)) {
+    ids.push_back(line.substr(0, 1));
+    const auto last = line.rfind(','), prev = line.rfind(',', last - 1);
+    v.emplace_back(std::stod(line.substr(prev + 1, last - prev - 1)), std::stod(line.substr(last + 1)));
+  }
+  BOOST_TEST_REQUIRE(v.size() == 4u);
+  BOOST_TEST((ids == std::vector<std::string>{"a", "b", "c", "d"}));
+  BOOST_TEST(v[0].first == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(v[0].second == 1.0, tt::tolerance(1e-6));
+  BOOST_TEST(v[1].first == 0.0);
+  BOOST_TEST(v[1].second == 0.0);
+  BOOST_TEST(v[2].first > 0.9997);
+  BOOST_TEST(v[3].first == 0.5, tt::tolerance(1e-9));
+  BOOST_TEST(v[3].second == 0.5, tt::tolerance(1e-6));
+  BOOST_TEST(slurp(d / "out.csv").find("\"top, centre\"") != std::string::npos);
+}
+
+// --bands N (the paper's fixed bands) and --tolerance T both work and agree within their errors.
+BOOST_AUTO_TEST_CASE(bands_and_tolerance_options) {
+  const fs::path d = skyband::test::test_folder("svf_cli_opts");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n";
+  for (const std::string opt : {"--bands 256", "--tolerance 1e-5"}) {
+    const auto r = run_skyband("svf --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                               q(d / "o.csv") + " " + opt);
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+    const std::string text = slurp(d / "o.csv");
+    const auto nl = text.find('\n');
+    const std::string row = text.substr(nl + 1);
+    const double svf = std::stod(row.substr(row.find(',', row.find(',', row.find(',') + 1) + 1) + 1));
+    // Closed form (reference-notes §5, element to a perpendicular rectangle): the point (15, 5, 0)
+    // sees only the cube's face x = 10, two rectangles w = 5 (along y) × h = 10 at c = 5 with the
+    // foot of the perpendicular at their common corner: X = h/w = 2, Y = c/w = 1,
+    // F = 2·(1/2π)[atan(1/Y) − Y/√(X²+Y²)·atan(1/√(X²+Y²))] = 0.190136, SVF = 1 − F.
+    const double X = 2, Y = 1, rho = std::sqrt(X * X + Y * Y);
+    const double expected = 1 - 2 * (std::atan(1 / Y) - Y / rho * std::atan(1 / rho)) / (2 * M_PI);
+    // 256 fixed bands: O(1/N²) here (no cube edge is parallel to the axis), measured 5e-7.
+    BOOST_TEST(svf == expected, tt::tolerance(1e-5));
+  }
+}
+
+// Bad input: one line naming the file/line/flag and the value, exit code 2, no output file left.
+BOOST_AUTO_TEST_CASE(bad_input_errors) {
+  const fs::path d = skyband::test::test_folder("svf_cli_errors");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "ok.csv") << "x,y,z\n1,2,3\n";
+  std::ofstream(d / "badnum.csv") << "x,y,z\n1,2,3\n4,five,6\n";
+  std::ofstream(d / "zero_normal.csv") << "x,y,z,nx,ny,nz\n1,2,3,0,0,0\n";
+  std::ofstream(d / "nan.obj") << "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(d / "badindex.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  const std::string out = " --out " + q(d / "out.csv");
+  struct Case {
+    std::string args, must_mention;
+  };
+  const Case cases[] = {
+      {"svf --mesh " + q(d / "missing.obj") + " --points " + q(d / "ok.csv") + out, "missing.obj"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "absent.csv") + out, "absent.csv"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "badnum.csv") + out, "five"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "zero_normal.csv") + out, "zero_normal.csv"},
+      {"svf --mesh " + q(d / "nan.obj") + " --points " + q(d / "ok.csv") + out, "nan.obj"},
+      {"svf --mesh " + q(d / "badindex.obj") + " --points " + q(d / "ok.csv") + out, "7"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --bands 0", "--bands"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --tolerance -1", "--tolerance"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
+       "no_such_dir"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_skyband(c.args);
+    BOOST_TEST_INFO(c.args);
+    BOOST_TEST(r.exit_code != 0);
+    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
+    BOOST_TEST(!fs::exists(d / "out.csv"));
+  }
+}
+
+// The built-in demo prints its table.
+BOOST_AUTO_TEST_CASE(demo_runs) {
+  const auto r = run_skyband("svf --demo");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.out.find("street centre") != std::string::npos);
+  BOOST_TEST(r.out.find("roof of the tower") != std::string::npos);
+}
