@@ -99,7 +99,15 @@ void insert_span(std::vector<Span>& v, double lo, double hi) {
   }
 }
 
+// Is [lo, hi] inside one occluded span? The hottest test of the traversal (per node and plane,
+// per triangle and plane): short lists are scanned linearly, which beats a binary search there.
 bool covered(const std::vector<Span>& v, double lo, double hi) {
+  const std::size_t n = v.size();
+  if (n <= 16) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (v[i].hi >= lo) return v[i].lo <= lo && v[i].hi >= hi;
+    return false;
+  }
   auto it = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
   return it != v.end() && it->lo <= lo && it->hi >= hi;
 }
