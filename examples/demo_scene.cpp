@@ -2,19 +2,6 @@
 
 namespace skyband::cli {
 
-namespace {
-
-void add_box(TriangleSoup& s, const Vec3& lo, const Vec3& hi) {
-  const auto b = static_cast<std::uint32_t>(s.vertices.size());
-  for (int i = 0; i < 8; ++i)
-    s.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
-  const std::uint32_t f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  for (auto& t : f) s.triangles.push_back({b + t[0], b + t[1], b + t[2]});
-}
-
-}  // namespace
-
 DemoScene make_demo_scene() {
   DemoScene d;
   // Ground 200 m × 200 m at z = 0 (two triangles).
@@ -23,10 +10,10 @@ DemoScene make_demo_scene() {
   s.triangles = {{0, 1, 2}, {0, 2, 3}};
   // A street running north–south (x ∈ [−6, 6], 12 m wide) between two rows of buildings,
   // 20 m deep, with a 10 m cross street at y ∈ [−5, 5] on the east side.
-  add_box(s, Vec3(-26, -60, 0), Vec3(-6, 60, 18));   // west row, 18 m
-  add_box(s, Vec3(6, -60, 0), Vec3(26, -5, 12));     // east row south, 12 m
-  add_box(s, Vec3(6, 5, 0), Vec3(26, 60, 24));       // east row north, 24 m
-  add_box(s, Vec3(30, -20, 0), Vec3(40, 20, 30));    // a tower behind the east row
+  append_box(s, Vec3(-26, -60, 0), Vec3(-6, 60, 18));   // west row, 18 m
+  append_box(s, Vec3(6, -60, 0), Vec3(26, -5, 12));     // east row south, 12 m
+  append_box(s, Vec3(6, 5, 0), Vec3(26, 60, 24));       // east row north, 24 m
+  append_box(s, Vec3(30, -20, 0), Vec3(40, 20, 30));    // a tower behind the east row
   const Vec3 up(0, 0, 1);
   d.points = {
       {"open ground far away", {Vec3(-80, -80, 0), up}},

@@ -28,4 +28,15 @@ void TriangleSoup::append(const TriangleSoup& other) {
   }
 }
 
+void append_box(TriangleSoup& soup, const Vec3& lo, const Vec3& hi) {
+  const auto b = static_cast<std::uint32_t>(soup.vertices.size());
+  // Corner i has x from bit 0, y from bit 1, z from bit 2.
+  for (int i = 0; i < 8; ++i)
+    soup.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  static constexpr std::uint32_t kFaces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& t : kFaces) soup.triangles.push_back({b + t[0], b + t[1], b + t[2]});
+  if (!soup.triangle_material.empty()) soup.triangle_material.resize(soup.triangles.size(), 0);
+}
+
 }  // namespace skyband

@@ -23,4 +23,7 @@ struct TriangleSoup {
   void append(const TriangleSoup& other);
 };
 
+// Appends the closed axis-aligned box [lo, hi] as 12 outward-oriented triangles.
+void append_box(TriangleSoup& soup, const Vec3& lo, const Vec3& hi);
+
 }  // namespace skyband

@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "cli/support/cli_runner.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 
@@ -20,32 +21,14 @@ using namespace skyband;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string err;
-};
+using test::CliResult;
 
 fs::path work_dir() {
-  const fs::path d = fs::path(SKYBAND_BINARY_DIR) / "test_output" / "render_cli";
-  fs::create_directories(d);
+  static const fs::path d = test::test_folder("render_cli");
   return d;
 }
 
-RunResult run(const std::string& args) {
-  const char* exe = std::getenv("SKYBAND_EXE");
-  BOOST_REQUIRE_MESSAGE(exe != nullptr, "SKYBAND_EXE is not set");
-  static int counter = 0;
-  const fs::path err_file = work_dir() / ("stderr_" + std::to_string(counter++) + ".txt");
-  const std::string cmd = std::string("'") + exe + "' " + args + " >/dev/null 2>'" + err_file.string() + "'";
-  RunResult r;
-  const int status = std::system(cmd.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+CliResult run(const std::string& args) { return test::run_skyband(args); }
 
 // tests/data/../../examples/scenes: the committed default scene (no macro names examples/).
 const std::string kScene = std::string(SKYBAND_TEST_DATA) + "/../../examples/scenes/default.toml";
@@ -57,7 +40,7 @@ BOOST_AUTO_TEST_CASE(renders_default_scene_to_exr_and_png) {
   const fs::path exr = work_dir() / "tiny.exr", png = work_dir() / "tiny.png";
   fs::remove(exr);
   fs::remove(png);
-  const RunResult r = run("render --quiet --scene '" + kScene + "' --out '" + exr.string() + "'" + kTiny);
+  const CliResult r = run("render --quiet --scene '" + kScene + "' --out '" + exr.string() + "'" + kTiny);
   BOOST_REQUIRE_MESSAGE(r.exit_code == 0, r.err);
   BOOST_REQUIRE(fs::exists(exr));
   BOOST_REQUIRE(fs::exists(png));
@@ -102,7 +85,7 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_the_key) {
       {"render --scene '" + kScene + "' --out x.png", "--out"},
   };
   for (const Case& c : cases) {
-    const RunResult r = run(c.args);
+    const CliResult r = run(c.args);
     BOOST_TEST(r.exit_code == 2, c.args << " → exit " << r.exit_code);
     BOOST_TEST(r.err.find(c.expect) != std::string::npos, c.args << " → " << r.err);
   }

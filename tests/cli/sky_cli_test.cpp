@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/support/cli_runner.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 
@@ -21,37 +22,15 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using skyband::test::CliResult;
+using RunResult = CliResult;
 
 fs::path work_dir() {
-  const fs::path d = fs::path(SKYBAND_BINARY_DIR) / "test_output" / "sky_cli";
-  fs::create_directories(d);
+  static const fs::path d = skyband::test::test_folder("sky_cli");
   return d;
 }
 
-RunResult run(const std::string& args) {
-  const char* exe = std::getenv("SKYBAND_EXE");
-  BOOST_REQUIRE_MESSAGE(exe != nullptr, "SKYBAND_EXE is not set");
-  static int counter = 0;
-  const fs::path err_file = work_dir() / ("stderr_" + std::to_string(counter++) + ".txt");
-  const std::string cmd = std::string("'") + exe + "' sky " + args + " 2>'" + err_file.string() + "'";
-  RunResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  BOOST_REQUIRE(p != nullptr);
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+CliResult run(const std::string& args) { return skyband::test::run_skyband("sky " + args); }
 
 json run_json(const std::string& args) {
   const RunResult r = run(args + " --json");

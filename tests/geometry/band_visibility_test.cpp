@@ -12,15 +12,6 @@ using namespace skyband;
 
 namespace {
 
-// Closed axis-aligned box [lo, hi] as 12 consistently oriented triangles.
-void add_box(TriangleSoup& s, const Vec3& lo, const Vec3& hi) {
-  const auto b = static_cast<std::uint32_t>(s.vertices.size());
-  for (int i = 0; i < 8; ++i)
-    s.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
-  const std::uint32_t f[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  for (auto& t : f) s.triangles.push_back({b + t[0], b + t[1], b + t[2]});
-}
 
 double svf_at(const Scene& scene, const Vec3& p, const Vec3& n, VisibilityOptions opt = {}) {
   BandVisibility bv(scene, opt);
@@ -49,7 +40,7 @@ BOOST_AUTO_TEST_CASE(open_sky_tilted_faces) {
 // whatever the band count (the box's own face must not hide the sky above it).
 BOOST_AUTO_TEST_CASE(closed_box_inside_and_on_top) {
   TriangleSoup s;
-  add_box(s, Vec3(0, 0, 0), Vec3(4, 3, 2));
+  append_box(s, Vec3(0, 0, 0), Vec3(4, 3, 2));
   const Scene scene(s);
   for (int bands : {1, 7, 64}) {
     VisibilityOptions opt;
@@ -73,7 +64,7 @@ BOOST_AUTO_TEST_CASE(closed_box_inside_and_on_top) {
 BOOST_AUTO_TEST_CASE(long_wall_closed_form) {
   for (double len : {1000.0, 10000.0}) {
     TriangleSoup s;
-    add_box(s, Vec3(-len, 1, 0), Vec3(len, 2, 3));
+    append_box(s, Vec3(-len, 1, 0), Vec3(len, 2, 3));
     const Scene scene(s);
     for (double d : {0.5, 1.0, 3.0}) {
       const double H = 3;
@@ -92,7 +83,7 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
     TriangleSoup s;
     for (int b = 0; b < 40; ++b) {
       const Vec3 lo(u(rng) * 100, u(rng) * 100, 0);
-      add_box(s, lo, lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)));
+      append_box(s, lo, lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)));
     }
     const Scene scene(s);
     // Without refinement: which edges are recorded as refinement breakpoints depends on the
