@@ -219,6 +219,20 @@ Spectrum mirror_lookup(const PointContext& c, Radiance& sky, SpecularSkyStats& s
   return l * c.lobe.weight;
 }
 
+// The opening both integrators share: nothing to integrate (no bands, no lobe, the view behind
+// the face), or a perfect mirror (one look-up of L in the mirror direction). True when `acc` is
+// the answer.
+template <class Radiance>
+bool trivial_case(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Radiance& sky,
+                  const SpecularSkyOptions& opt, PointContext& c, SpecularSkyStats& stats, Spectrum& acc) {
+  if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c)) return true;
+  if (lobe.roughness_m < opt.mirror_below_m) {
+    acc = mirror_lookup(c, sky, stats);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace specular_detail
 
 // The ε-truncated partial-sky integral (seed §3). `sky(const Vec3& world_dir, Spectrum& out)`
@@ -230,12 +244,7 @@ Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view
   SpecularSkyStats stats;
   Spectrum acc;
   PointContext c;
-  if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c)) {
-    if (stats_out) *stats_out = stats;
-    return acc;
-  }
-  if (lobe.roughness_m < opt.mirror_below_m) {
-    acc = mirror_lookup(c, sky, stats);
+  if (trivial_case(view, view_dir, lobe, sky, opt, c, stats, acc)) {
     if (stats_out) *stats_out = stats;
     return acc;
   }
@@ -300,12 +309,7 @@ Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& vie
   SpecularSkyStats stats;
   Spectrum acc;
   PointContext c;
-  if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c)) {
-    if (stats_out) *stats_out = stats;
-    return acc;
-  }
-  if (lobe.roughness_m < opt.mirror_below_m) {
-    acc = mirror_lookup(c, sky, stats);
+  if (trivial_case(view, view_dir, lobe, sky, opt, c, stats, acc)) {
     if (stats_out) *stats_out = stats;
     return acc;
   }
