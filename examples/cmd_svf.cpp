@@ -120,22 +120,22 @@ void run(const SvfArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
   Progress progress(!a.quiet);
-  const VisibilityCache cache = compute_visibility(scene, table.points, opt, a.threads,
-                                                   [&](std::size_t d, std::size_t t) { progress(d, t); });
+  // Only the two numbers per point are kept (not the visibility cache): memory stays O(points).
+  const std::vector<SkyFactors> factors = compute_sky_factors(scene, table.points, opt, a.threads,
+                                                              [&](std::size_t d, std::size_t t) { progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   std::vector<std::vector<double>> values(2, std::vector<double>(table.points.size()));
   for (std::size_t i = 0; i < table.points.size(); ++i) {
-    const auto v = cache.view(i);
-    values[0][i] = sky_view_factor(v);
-    values[1][i] = sky_exposure(v);
+    values[0][i] = factors[i].svf;
+    values[1][i] = factors[i].sky_exposure;
   }
   write_points_csv(a.out, table, {"svf", "sky_exposure"}, values);
   if (!a.quiet) {
     const std::size_t n = table.points.size();
     const double mean = n ? std::accumulate(values[0].begin(), values[0].end(), 0.0) / double(n) : 0.0;
-    std::fprintf(stderr, "svf: %zu points in %.2f s (%.0f points/s), mean svf %.4f, %.0f bytes/point; wrote %s\n", n,
-                 seconds, seconds > 0 ? double(n) / seconds : 0.0, mean, cache.bytes_per_point(), a.out.c_str());
+    std::fprintf(stderr, "svf: %zu points in %.2f s (%.0f points/s), mean svf %.4f; wrote %s\n", n, seconds,
+                 seconds > 0 ? double(n) / seconds : 0.0, mean, a.out.c_str());
   }
 }
 

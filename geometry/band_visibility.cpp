@@ -644,12 +644,17 @@ bool BandVisibility::direction_visible(const QueryPoint& q, const Vec3& directio
 std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle_tests; }
 std::size_t BandVisibility::last_plane_count() const { return impl_->plane_count; }
 
-VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
-                                   const VisibilityOptions& options, int threads,
-                                   const std::function<void(std::size_t, std::size_t)>& progress) {
-  constexpr std::size_t kChunk = 256;
+namespace {
+
+// Runs the points in chunks of kChunk over `threads` workers (one BandVisibility each) and hands
+// every finished chunk's cache to consume(chunk_index, cache). Each point is computed alone, so
+// the results do not depend on the thread count.
+constexpr std::size_t kChunk = 256;
+
+template <class Consume>
+void for_each_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                    int threads, const std::function<void(std::size_t, std::size_t)>& progress, Consume&& consume) {
   const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
-  std::vector<VisibilityCache> parts(chunks);
   tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
@@ -659,11 +664,13 @@ VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoin
     VisibilityCache::PointResult result;
     for (std::size_t c = range.begin(); c != range.end(); ++c) {
       const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
-      parts[c].reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
+      VisibilityCache part;
+      part.reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
       for (std::size_t i = first; i < last; ++i) {
         worker->compute(points[i], result);
-        parts[c].append(result);
+        part.append(result);
       }
+      consume(c, std::move(part));
       const std::size_t now = done += (last - first);
       if (progress) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -674,16 +681,36 @@ VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoin
   const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(n);
   arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), body); });
+  if (progress) progress(points.size(), points.size());
+}
+
+}  // namespace
+
+VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
+                                   const VisibilityOptions& options, int threads,
+                                   const std::function<void(std::size_t, std::size_t)>& progress) {
+  std::vector<VisibilityCache> parts((points.size() + kChunk - 1) / kChunk);
+  for_each_chunk(scene, points, options, threads, progress,
+                 [&](std::size_t c, VisibilityCache&& part) { parts[c] = std::move(part); });
   VisibilityCache cache;
-  std::size_t bands = 0, intervals = 0;
-  for (const auto& part : parts) {
-    bands += part.bands().size();
-    intervals += part.intervals().size();
-  }
+  std::size_t bands = 0;
+  for (const auto& part : parts) bands += part.bands().size();
   cache.reserve(points.size(), points.empty() ? 0 : bands / points.size() + 1);
   for (const auto& part : parts) cache.append(part);
-  if (progress) progress(points.size(), points.size());
   return cache;
+}
+
+std::vector<SkyFactors> compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points,
+                                            const VisibilityOptions& options, int threads,
+                                            const std::function<void(std::size_t, std::size_t)>& progress) {
+  std::vector<SkyFactors> out(points.size());
+  for_each_chunk(scene, points, options, threads, progress, [&](std::size_t c, VisibilityCache&& part) {
+    for (std::size_t i = 0; i < part.size(); ++i) {
+      const PointVisibilityView v = part.view(i);
+      out[c * kChunk + i] = SkyFactors{sky_view_factor(v), sky_exposure(v)};
+    }
+  });
+  return out;
 }
 
 }  // namespace skyband

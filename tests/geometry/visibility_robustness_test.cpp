@@ -44,6 +44,13 @@ BOOST_AUTO_TEST_CASE(bit_identical_across_thread_counts) {
   const VisibilityCache one = compute_visibility(scene, pts, {}, 1);
   BOOST_TEST(same_cache(one, compute_visibility(scene, pts, {}, 2)));
   BOOST_TEST(same_cache(one, compute_visibility(scene, pts, {}, 3)));
+  // The cache-free path (skyband svf) gives the same numbers bit for bit.
+  const std::vector<SkyFactors> f = compute_sky_factors(scene, pts, {}, 2);
+  BOOST_TEST_REQUIRE(f.size() == pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    BOOST_TEST(f[i].svf == sky_view_factor(one.view(i)));
+    BOOST_TEST(f[i].sky_exposure == sky_exposure(one.view(i)));
+  }
 }
 
 // Occlusion never depends on orientation: reversing every triangle's winding (and shuffling the
