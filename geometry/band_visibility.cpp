@@ -286,27 +286,34 @@ struct BandVisibility::Impl {
     Vec3 L[3];
     for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
     double plo, phi;
-    const double h_lo = std::min({L[0].y(), L[1].y(), L[2].y()}), h_hi = std::max({L[0].y(), L[1].y(), L[2].y()});
-    const double z_lo = std::min({L[0].z(), L[1].z(), L[2].z()}), z_hi = std::max({L[0].z(), L[1].z(), L[2].z()});
+    auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
+    auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
+    const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
+    const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
     if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
     double alo, ahi;
-    const double x_lo = std::min({L[0].x(), L[1].x(), L[2].x()}), x_hi = std::max({L[0].x(), L[1].x(), L[2].x()});
+    const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
     if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi)) return;
     int k0, k1;
     plane_range(plo, phi, k0, k1);
     k0 = std::max(k0, j0);
     k1 = std::min(k1, j1);
     if (k0 >= k1) return;
-    // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of measure
-    // zero (this is also what keeps a face from hiding the sky above itself).
-    if (CGAL::orientation(KPoint(v0.x(), v0.y(), v0.z()), KPoint(v1.x(), v1.y(), v1.z()),
-                          KPoint(v2.x(), v2.y(), v2.z()), KPoint(p.x(), p.y(), p.z())) == CGAL::COPLANAR)
-      return;
     const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
     bool contributed = false;
+    bool edge_on_checked = false;
     for (int j = k0; j < k1; ++j) {
       Plane& pl = planes[active[j]];
       if (covered(pl.occluded, alo, ahi)) continue;  // already hidden on this line (front-to-back)
+      if (!edge_on_checked) {
+        // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of
+        // measure zero (this is also what keeps a face from hiding the sky above itself).
+        // Tested lazily: most triangles that get this far are hidden on every plane anyway.
+        if (CGAL::orientation(KPoint(v0.x(), v0.y(), v0.z()), KPoint(v1.x(), v1.y(), v1.z()),
+                              KPoint(v2.x(), v2.y(), v2.z()), KPoint(p.x(), p.y(), p.z())) == CGAL::COPLANAR)
+          return;
+        edge_on_checked = true;
+      }
       double val[3];
       int sg[3];
       for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
