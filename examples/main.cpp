@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help/--version exit 0; every malformed command line is an input error: exit code 2.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "skyband: error: %s\n", e.what());
     return 2;

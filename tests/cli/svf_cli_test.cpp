@@ -123,7 +123,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
   for (const Case& c : cases) {
     const auto r = run_skyband(c.args);
     BOOST_TEST_INFO(c.args);
-    BOOST_TEST(r.exit_code != 0);
+    BOOST_TEST(r.exit_code == 2);
     BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
     BOOST_TEST(!fs::exists(d / "out.csv"));
   }
