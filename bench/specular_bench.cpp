@@ -17,6 +17,7 @@
 
 #include "lighting/material.h"
 #include "lighting/specular_sky.h"
+#include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 
 using namespace skyband;
@@ -24,26 +25,11 @@ using namespace skyband;
 namespace {
 struct ClearSky {
   Vec3 sun = Vec3(std::cos(0.61) * 0.8, std::cos(0.61) * -0.6, std::sin(0.61));
-  void operator()(const Vec3& d, Spectrum& out) const {
-    const double cz = std::max(d.z(), 0.0);
-    const double chi = std::acos(std::clamp(d.dot(sun), -1.0, 1.0));
-    const double f = 1 + 10 * (std::exp(-3 * chi) - std::exp(-3 * kPi / 2)) + 0.45 * std::cos(chi) * std::cos(chi);
-    const double phi = cz > 0 ? 1 - std::exp(-0.32 / cz) : 1.0;
-    for (int i = 0; i < kSpectrumSamples; ++i) out[i] = f * phi * (1.0 + 0.6 * (1.0 - i / 40.0) * cz);
-  }
+  void operator()(const Vec3& d, Spectrum& out) const { test::clear_sky_radiance(sun, d, out); }
 };
 
-double sum(const Spectrum& s) {
-  double t = 0;
-  for (double x : s.v) t += x;
-  return t;
-}
-
-Vec3 view_at(const Vec3& n, double theta, double phi) {
-  const Vec3 t1 = (std::abs(n.z()) < 0.9 ? n.cross(Vec3(0, 0, 1)) : n.cross(Vec3(1, 0, 0))).normalized();
-  const Vec3 t2 = n.cross(t1);
-  return std::cos(theta) * n + std::sin(theta) * (std::cos(phi) * t1 + std::sin(phi) * t2);
-}
+using test::view_at;
+double sum(const Spectrum& s) { return test::channel_sum(s); }
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -8,6 +8,7 @@
 #include "lighting/fresnel.h"
 #include "lighting/material.h"
 #include "lighting/specular_sky.h"
+#include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 
 namespace tt = boost::test_tools;
@@ -30,30 +31,15 @@ struct TestSky {
       case SkyKind::kOvercast:  // CIE standard overcast, L_z = 1
         out = Spectrum::constant((1.0 + 2.0 * d.z()) / 3.0);
         return;
-      case SkyKind::kClear: {  // CIE general sky type 12 (reference-notes §3.3), tinted blue at the zenith
-        const double cz = std::max(d.z(), 0.0);
-        const double chi = std::acos(std::clamp(d.dot(sun), -1.0, 1.0));
-        const double f = 1 + 10 * (std::exp(-3 * chi) - std::exp(-3 * kPi / 2)) + 0.45 * std::cos(chi) * std::cos(chi);
-        const double phi = cz > 0 ? 1 - std::exp(-0.32 / cz) : 1.0;
-        for (int i = 0; i < kSpectrumSamples; ++i) out[i] = f * phi * (1.0 + 0.6 * (1.0 - i / 40.0) * cz);
+      case SkyKind::kClear:  // CIE general sky type 12, tinted blue at the zenith
+        test::clear_sky_radiance(sun, d, out);
         return;
-      }
     }
   }
 };
 
-double channel_sum(const Spectrum& s) {
-  double t = 0;
-  for (double x : s.v) t += x;
-  return t;
-}
-
-// Unit view direction at polar angle θ from n and azimuth φ around it.
-Vec3 view_at(const Vec3& n, double theta, double phi) {
-  const Vec3 t1 = (std::abs(n.z()) < 0.9 ? n.cross(Vec3(0, 0, 1)) : n.cross(Vec3(1, 0, 0))).normalized();
-  const Vec3 t2 = n.cross(t1);
-  return std::cos(theta) * n + std::sin(theta) * (std::cos(phi) * t1 + std::sin(phi) * t2);
-}
+using test::channel_sum;
+using test::view_at;
 
 std::vector<std::pair<double, double>> some_occlusion(int band, double delta) {
   if (band % 7 == 3) return {};
