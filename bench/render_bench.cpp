@@ -15,9 +15,7 @@
 
 #include "lighting/renderer.h"
 #include "lighting/sun.h"
-// The building generator is an example program's source; the bench compiles it in directly
-// (bench/CMakeLists.txt links the libraries only).
-#include "examples/paper_building.cpp"
+#include "examples/paper_building.h"
 
 using namespace skyband;
 

@@ -30,8 +30,8 @@ fs::path work_dir() {
 
 CliResult run(const std::string& args) { return test::run_skyband(args); }
 
-// tests/data/../../examples/scenes: the committed default scene (no macro names examples/).
-const std::string kScene = std::string(SKYBAND_TEST_DATA) + "/../../examples/scenes/default.toml";
+// The committed default scene.
+const std::string kScene = std::string(SKYBAND_EXAMPLES_DIR) + "/scenes/default.toml";
 const std::string kTiny = " --set image.width=48 --set image.height=36 --set quality.bands=8";
 
 }  // namespace
