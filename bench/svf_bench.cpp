@@ -9,11 +9,13 @@
 //
 // Targets (reported, not asserted): ≥ 50,000 points/s on the 10k city and ≥ 10,000 points/s on
 // the 1M city at default settings with 2 threads; max |error| ≤ 1e-3.
-// Usage: bench_svf [--points N] [--oracle-points K] [--quick]
+// Usage: bench_svf [--points N] [--oracle-points K] [--quick] [--small-only] [--only TEXT] [--max-threads 1|2] [--hash]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -57,7 +59,7 @@ std::vector<Config> configs() {
 }
 
 void run_city(const char* label, std::size_t target_triangles, std::size_t n_points, std::size_t n_oracle,
-              double max_radius_m) {
+              double max_radius_m, const std::string& only, int max_threads, bool print_hash) {
   auto t0 = Clock::now();
   const gen::City city = gen::make_city(gen::city_params_for_triangles(target_triangles, 2024));
   const double t_gen = seconds_since(t0);
@@ -100,8 +102,10 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
   std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(32, '-').c_str(), std::string(9, '-').c_str(), std::string(14, '-').c_str(),
               std::string(14, '-').c_str(), std::string(14, '-').c_str(), std::string(12, '-').c_str(), std::string(11, '-').c_str());
   for (const Config& c : configs()) {
+    if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     std::vector<double> svf_1t;
     for (int threads : {1, 2}) {
+      if (threads > max_threads) continue;
       t0 = Clock::now();
       const VisibilityCache cache = compute_visibility(scene, pts, c.options, threads);
       const double t = seconds_since(t0);
@@ -112,6 +116,16 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
         const double e = std::abs(svf[subset[k]] - exact[k]);
         max_err = std::max(max_err, e);
         sum_err += e;
+      }
+      if (print_hash && threads == 1) {
+        // FNV-1a over the SVF bit patterns: compares two builds bit for bit (--hash).
+        std::uint64_t hash = 1469598103934665603ull;
+        for (double v : svf) {
+          std::uint64_t bits;
+          std::memcpy(&bits, &v, sizeof bits);
+          hash = (hash ^ bits) * 1099511628211ull;
+        }
+        std::printf("# %s: SVF hash %016llx\n", c.name.c_str(), static_cast<unsigned long long>(hash));
       }
       const char* same = "-";
       if (threads == 1) svf_1t = svf;
@@ -128,11 +142,17 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
 int main(int argc, char** argv) {
   CLI::App app{"sky-view-factor benchmark: band core vs exact oracle on procedural cities"};
   std::size_t points = 4000, oracle_points = 16;
-  bool quick = false;
+  bool quick = false, small_only = false, print_hash = false;
+  std::string only;
+  int max_threads = 2;
   app.add_option("--points", points, "query points per city (half street, half facade)")->check(CLI::Range(4, 100000000));
   app.add_option("--oracle-points", oracle_points, "points checked against the exact oracle (slow: ~seconds each)")
       ->check(CLI::Range(0, 100000));
   app.add_flag("--quick", quick, "10k city only, at most 1000 points and 8 oracle points");
+  app.add_option("--only", only, "run only the option rows whose name contains this text (e.g. \"default\", \"N=64\")");
+  app.add_option("--max-threads", max_threads, "1: single-thread rows only")->check(CLI::Range(1, 2));
+  app.add_flag("--hash", print_hash, "print a hash of the single-thread SVFs (bit-identity between builds)");
+  app.add_flag("--small-only", small_only, "10k city only (all points and oracle points)");
   CLI11_PARSE(app, argc, argv);
   if (quick) {
     points = std::min<std::size_t>(points, 1000);
@@ -140,7 +160,7 @@ int main(int argc, char** argv) {
   }
   std::printf("# skyband SVF benchmark. Targets (not asserted): >= 50,000 points/s (10k city) and >= 10,000 points/s (1M "
               "city) at default options, 2 threads; max |err| <= 1e-3.\n");
-  run_city("city ~10k triangles", 10000, points, oracle_points, 1e300);
-  if (!quick) run_city("city ~1M triangles", 1000000, points, oracle_points, 1200.0);
+  run_city("city ~10k triangles", 10000, points, oracle_points, 1e300, only, max_threads, print_hash);
+  if (!quick && !small_only) run_city("city ~1M triangles", 1000000, points, oracle_points, 1200.0, only, max_threads, print_hash);
   return 0;
 }
