@@ -9,7 +9,7 @@
 //
 // Targets (reported, not asserted): ≥ 50,000 points/s on the 10k city and ≥ 10,000 points/s on
 // the 1M city at default settings with 2 threads; max |error| ≤ 1e-3.
-// Usage: bench_svf [--points N] [--oracle-points K] [--quick] [--small-only] [--only TEXT] [--max-threads 1|2] [--hash]
+// Usage: bench_svf [--points N] [--oracle-points K] [--quick] [--small-only] [--only TEXT] [--max-threads 1|2] [--hash] [--axis-tail RAD]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -41,6 +41,8 @@ struct Config {
   VisibilityOptions options;
 };
 
+double g_axis_tail_rad = -1;  // --axis-tail: overrides VisibilityOptions::axis_tail_rad when ≥ 0
+
 std::vector<Config> configs() {
   std::vector<Config> out;
   VisibilityOptions n64;
@@ -55,6 +57,8 @@ std::vector<Config> configs() {
   out.push_back({"N=" + std::to_string(tol.bands) + ", tolerance 1e-4", tol});
   VisibilityOptions def;
   out.push_back({"default (N=" + std::to_string(def.bands) + ", tol " + std::to_string(def.tolerance).substr(0, 7) + ")", def});
+  if (g_axis_tail_rad >= 0)
+    for (Config& c : out) c.options.axis_tail_rad = g_axis_tail_rad;
   return out;
 }
 
@@ -152,6 +156,8 @@ int main(int argc, char** argv) {
   app.add_option("--only", only, "run only the option rows whose name contains this text (e.g. \"default\", \"N=64\")");
   app.add_option("--max-threads", max_threads, "1: single-thread rows only")->check(CLI::Range(1, 2));
   app.add_flag("--hash", print_hash, "print a hash of the single-thread SVFs (bit-identity between builds)");
+  app.add_option("--axis-tail", g_axis_tail_rad, "axis_tail_rad for every row (radians; default: the library's)")
+      ->check(CLI::Range(0.0, 0.5));
   app.add_flag("--small-only", small_only, "10k city only (all points and oracle points)");
   CLI11_PARSE(app, argc, argv);
   if (quick) {

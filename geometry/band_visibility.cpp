@@ -7,8 +7,6 @@
 #include <cmath>
 #include <mutex>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Exact_rational.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -20,9 +18,6 @@
 namespace skyband {
 
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using KPoint = Kernel::Point_3;
 
 // An occluded interval on a sample line, in pseudo-angle units (pseudo_angle.h): [0, 2] ↔ [0, π].
 struct Span {
@@ -309,9 +304,7 @@ struct BandVisibility::Impl {
         // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of
         // measure zero (this is also what keeps a face from hiding the sky above itself).
         // Tested lazily: most triangles that get this far are hidden on every plane anyway.
-        if (CGAL::orientation(KPoint(v0.x(), v0.y(), v0.z()), KPoint(v1.x(), v1.y(), v1.z()),
-                              KPoint(v2.x(), v2.y(), v2.z()), KPoint(p.x(), p.y(), p.z())) == CGAL::COPLANAR)
-          return;
+        if (exact_orientation(v0, v1, v2, p) == 0) return;
         edge_on_checked = true;
       }
       double val[3];

@@ -1,8 +1,11 @@
 #pragma once
-// Exact sign of a dot product m·d of double vectors: the predicate "which side of a sample
-// plane (normal m, through the calculation point) does a vertex (offset d) lie on".
-// A floating-point filter decides almost every case; the rest fall back to exact rational
-// arithmetic (CGAL::Exact_rational, in exact_sign.cpp, so no CGAL header leaks from here).
+// Exact signs of the two predicates of the band-visibility core, each a floating-point filter
+// that decides almost every case, with an exact fallback (CGAL, in exact_sign.cpp, so no CGAL
+// header leaks from here):
+//   exact_dot_sign     — sign of m·d: which side of a sample plane (normal m, through the
+//                        calculation point) a vertex (offset d) lies on;
+//   exact_orientation  — sign of the orientation of four points: whether a triangle's plane
+//                        contains the calculation point (the triangle is then seen edge-on).
 #include <cmath>
 
 #include "geometry/vec3.h"
@@ -10,6 +13,7 @@
 namespace skyband {
 
 int exact_dot_sign_slow(const Vec3& m, const Vec3& d);
+int exact_orientation_slow(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 // Returns the exact sign of m·d and, in `value`, a double approximation of m·d whose sign
 // agrees with the returned sign (for interpolation).
@@ -28,6 +32,32 @@ inline int exact_dot_sign(const Vec3& m, const Vec3& d, double& value) {
   if (s == 0) value = 0;
   else if (value * s <= 0) value = s * 1e-300;  // keep the float value's sign consistent
   return s;
+}
+
+// Sign of det[a − d, b − d, c − d] (the negative of CGAL::orientation(a, b, c, d)); 0 exactly when
+// the four points are coplanar.
+// Filter: Shewchuk's orient3d stage-A bound (Adaptive Precision Floating-Point Arithmetic and
+// Fast Robust Geometric Predicates, 1997, §4.3): with the differences rounded, the computed
+// determinant is within (7 + 56ε)ε·P of the exact one, P the permanent (the same expansion with
+// absolute values), ε = 2⁻⁵³. Tiny permanents (possible underflow) go to the exact path.
+inline int exact_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double adx = a.x() - d.x(), ady = a.y() - d.y(), adz = a.z() - d.z();
+  const double bdx = b.x() - d.x(), bdy = b.y() - d.y(), bdz = b.z() - d.z();
+  const double cdx = c.x() - d.x(), cdy = c.y() - d.y(), cdz = c.z() - d.z();
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
+                           (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
+                           (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
+  constexpr double kEps = 0x1p-53;
+  const double bound = (7.0 + 56.0 * kEps) * kEps * permanent;
+  if (permanent > 1e-250) {
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
+  return exact_orientation_slow(a, b, c, d);
 }
 
 }  // namespace skyband
