@@ -7,13 +7,17 @@
 // the reference of the same face and view with the sky unobstructed (max_err_open%): where an
 // occluder hides the lobe's core, what remains is its tails, which ε truncates by design (the
 // seed's G has no visibility in it), so the first measure can be large on a tiny value.
-// Usage: bench_specular [views_per_point (default 8)] [epsilon (default 1e-3)]
+// Usage: bench_specular [--views N] [--epsilon E] [--alpha-step-per-m C] [--delta-step-per-m C]
+//                       [--single-line-per-m C] [--max-alpha-step R] [--max-delta-step R] [--m M ...]
+// (defaults: 8 views per point and the library's SpecularSkyOptions).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "lighting/material.h"
 #include "lighting/specular_sky.h"
@@ -33,9 +37,20 @@ double sum(const Spectrum& s) { return test::channel_sum(s); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int views = argc > 1 ? std::max(1, std::atoi(argv[1])) : 8;
+  int views = 8;
   SpecularSkyOptions opt;
-  if (argc > 2) opt.epsilon = std::atof(argv[2]);
+  std::vector<double> roughness = {0.02, 0.1, 0.3, 0.5};
+  CLI::App app{"bench_specular: epsilon-truncated vs full specular sky integral"};
+  app.add_option("--views", views, "views per point")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--epsilon", opt.epsilon)->capture_default_str();
+  app.add_option("--alpha-step-per-m", opt.alpha_step_per_m)->capture_default_str();
+  app.add_option("--delta-step-per-m", opt.delta_step_per_m)->capture_default_str();
+  app.add_option("--single-line-per-m", opt.single_line_per_m)->capture_default_str();
+  app.add_option("--max-alpha-step", opt.max_alpha_step_rad, "radians")->capture_default_str();
+  app.add_option("--max-delta-step", opt.max_delta_step_rad, "radians")->capture_default_str();
+  app.add_option("--grazing-floor", opt.grazing_floor)->capture_default_str();
+  app.add_option("--m", roughness, "Beckmann roughness values")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
   const ClearSky sky;
   const Material& al = find_material("aluminium-panel");
 
@@ -58,7 +73,7 @@ int main(int argc, char** argv) {
   std::printf("%6s %12s %12s %9s %12s %12s %10s %10s %14s\n", "m", "trunc_us", "full_us", "speedup", "trunc_evals",
               "full_evals", "max_err%", "mean_err%", "max_err_open%");
   using clock = std::chrono::steady_clock;
-  for (double m : {0.02, 0.1, 0.3, 0.5}) {
+  for (double m : roughness) {
     const SpecularLobe lobe{m, al.specular_weight, &al.fresnel, false};
     double t_fast = 0, t_full = 0, max_err = 0, sum_err = 0, max_err_open = 0;
     std::vector<double> open_ref(static_cast<std::size_t>(views), 0.0);  // points come in (open, occluded) pairs

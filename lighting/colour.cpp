@@ -163,6 +163,10 @@ std::span<const CmfRow> cie1931_2deg_5nm() { return kCie1931_5nm; }
 const Spectrum& cmf_x() { return grid_cmf().x; }
 const Spectrum& cmf_y() { return grid_cmf().y; }
 const Spectrum& cmf_z() { return grid_cmf().z; }
+const Spectrum& xyz_weights(int c) {
+  const GridCmf& g = grid_cmf();
+  return c == 0 ? g.wx : c == 1 ? g.wy : g.wz;
+}
 
 Xyz spectrum_to_xyz(const Spectrum& s) {
   const GridCmf& g = grid_cmf();

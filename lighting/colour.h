@@ -43,6 +43,10 @@ const Spectrum& cmf_x();
 const Spectrum& cmf_y();
 const Spectrum& cmf_z();
 
+// x̄, ȳ, z̄ (c = 0, 1, 2) times the trapezoid weights of the grid (nm): spectrum_to_xyz(s) is
+// the dot product of these with s, so any linear map of spectra to XYZ can be pre-projected.
+const Spectrum& xyz_weights(int c);
+
 // ∫ s(λ)·{x̄,ȳ,z̄}(λ) dλ by the trapezoid rule on the grid (same rule as Spectrum::integral_nm).
 Xyz spectrum_to_xyz(const Spectrum& s);
 

@@ -6,26 +6,6 @@
 
 namespace skyband {
 
-bool microfacet_cosines(const Vec3& n, const Vec3& l, const Vec3& v, MicrofacetCosines& c) {
-  c.n_dot_l = n.dot(l);
-  c.n_dot_v = n.dot(v);
-  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return false;
-  const Vec3 sum = l + v;
-  const double len = sum.norm();
-  if (!(len > 0.0)) return false;
-  c.n_dot_h = n.dot(sum) / len;
-  c.v_dot_h = v.dot(sum) / len;
-  return true;
-}
-
-double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale) {
-  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return 0.0;
-  const double d = beckmann_d(c.n_dot_h, roughness_m);
-  const double g = cook_torrance_g(c.n_dot_h, c.n_dot_v, c.n_dot_l, c.v_dot_h);
-  const double fs = d * g / (4.0 * c.n_dot_l * c.n_dot_v);
-  return paper_scale ? kPaperScale * fs : fs;
-}
-
 double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roughness_m, double fresnel,
                         bool paper_scale) {
   MicrofacetCosines c;

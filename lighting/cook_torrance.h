@@ -13,6 +13,7 @@
 // The Fresnel factor is supplied by the caller (a scalar or a spectrum): everything here is the
 // Fresnel-free, wavelength-independent part.
 #include "geometry/vec3.h"
+#include "lighting/beckmann.h"
 #include "lighting/fresnel.h"
 
 namespace skyband {
@@ -25,11 +26,27 @@ struct MicrofacetCosines {
 };
 
 // Computes the cosines with H = normalize(L + V). Returns false (and leaves a zero BRDF) when L
-// or V is at or below the surface or L = −V.
-bool microfacet_cosines(const Vec3& n, const Vec3& l, const Vec3& v, MicrofacetCosines& c);
+// or V is at or below the surface or L = −V. (Inline: the sky integrals call it per direction.)
+inline bool microfacet_cosines(const Vec3& n, const Vec3& l, const Vec3& v, MicrofacetCosines& c) {
+  c.n_dot_l = n.dot(l);
+  c.n_dot_v = n.dot(v);
+  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return false;
+  const Vec3 sum = l + v;
+  const double len = sum.norm();
+  if (!(len > 0.0)) return false;
+  c.n_dot_h = n.dot(sum) / len;
+  c.v_dot_h = v.dot(sum) / len;
+  return true;
+}
 
 // D_n·G / (4 (N·L)(N·V)) — f_s without F, in sr⁻¹ (times kPaperScale if paper_scale).
-double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale = false);
+inline double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale = false) {
+  if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return 0.0;
+  const double d = beckmann_d(c.n_dot_h, roughness_m);
+  const double g = cook_torrance_g(c.n_dot_h, c.n_dot_v, c.n_dot_l, c.v_dot_h);
+  const double fs = d * g / (4.0 * c.n_dot_l * c.n_dot_v);
+  return paper_scale ? kPaperScale * fs : fs;
+}
 
 // f_s(L, V) for a wavelength-independent Fresnel factor `fresnel` (sr⁻¹).
 double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roughness_m, double fresnel,

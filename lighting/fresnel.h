@@ -94,6 +94,8 @@ class FresnelTable {
     eval(cos_theta, s);
     return s;
   }
+  // The tabulated value at node j (cos θ = j/(kNodes − 1)) and wavelength sample i.
+  double node_value(int j, int i) const { return f_[static_cast<std::size_t>(j) * kSpectrumSamples + static_cast<std::size_t>(i)]; }
 
  private:
   FresnelTable() : f_(static_cast<std::size_t>(kNodes) * kSpectrumSamples, 0.0) {}

@@ -13,6 +13,8 @@
 
 #include "lighting/colour.h"
 #include "lighting/sky_lut.h"
+#include "lighting/sky_radiance_grid.h"
+#include "lighting/specular_sky_colour.h"
 #include "lighting/sun_shading.h"
 
 namespace skyband {
@@ -30,56 +32,6 @@ void in_arena(int threads, F&& f) {
     f();
   }
 }
-
-// The sky radiance resampled on a regular (altitude, azimuth) grid of kGridStep_rad = 0.5° for
-// the specular march and the background: bilinear interpolation of 4 nodes instead of the sky
-// model's bicubic 16-node look-up, ~10× cheaper per direction (the march takes hundreds of
-// directions per point). Interpolation error ≤ h²/8·max|L''| with h = 0.5° = 8.7e-3 rad, i.e.
-// ≤ 1e-5·max|L''| (L'' per rad²): below the sky model's own table error (its nodes are several
-// degrees apart). Directions at or below the horizon give 0, as SkyModel::radiance_into does.
-class SkyRadianceGrid {
- public:
-  static constexpr int kAltCells = 180, kAzCells = 720;
-  static constexpr double kStep_rad = 0.5 * kPi / kAltCells;  // 0.5°
-  SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads)
-      : data_(static_cast<std::size_t>(kAltCells + 1) * (kAzCells + 1) * kSpectrumSamples) {
-    in_arena(threads, [&] {
-      tbb::parallel_for(0, kAltCells + 1, [&](int i) {
-        // Node row 0 is taken just above the horizon (the model is 0 at exactly z = 0).
-        const double alt = std::max(i * kStep_rad, 1e-6);
-        Spectrum l;
-        for (int j = 0; j <= kAzCells; ++j) {
-          const double az = j * kStep_rad;  // clockwise from north
-          sky(Vec3(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt)), l);
-          float* d = &data_[(static_cast<std::size_t>(i) * (kAzCells + 1) + static_cast<std::size_t>(j)) * kSpectrumSamples];
-          for (int k = 0; k < kSpectrumSamples; ++k) d[k] = static_cast<float>(l[k]);
-        }
-      });
-    });
-  }
-  void operator()(const Vec3& dir, Spectrum& out) const {
-    const double n = dir.norm();
-    if (!(dir.z() > 0) || !(n > 0)) {
-      out = Spectrum{};
-      return;
-    }
-    const double alt = std::asin(std::min(1.0, dir.z() / n));
-    double az = std::atan2(dir.x(), dir.y());
-    if (az < 0) az += 2.0 * kPi;
-    const double u = alt / kStep_rad, v = az / kStep_rad;
-    const int i = std::min(static_cast<int>(u), kAltCells - 1), j = std::min(static_cast<int>(v), kAzCells - 1);
-    const double fu = u - i, fv = v - j;
-    const float* a = &data_[(static_cast<std::size_t>(i) * (kAzCells + 1) + static_cast<std::size_t>(j)) * kSpectrumSamples];
-    const float* b = a + kSpectrumSamples;
-    const float* c = a + static_cast<std::size_t>(kAzCells + 1) * kSpectrumSamples;
-    const float* d = c + kSpectrumSamples;
-    const double w00 = (1 - fu) * (1 - fv), w01 = (1 - fu) * fv, w10 = fu * (1 - fv), w11 = fu * fv;
-    for (int k = 0; k < kSpectrumSamples; ++k) out[k] = w00 * a[k] + w01 * b[k] + w10 * c[k] + w11 * d[k];
-  }
-
- private:
-  std::vector<float> data_;
-};
 
 // The four shading terms of one surface sample as linear sRGB (unit: see renderer.h).
 struct ShadedRgb {
@@ -213,7 +165,26 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   const Spectrum& e_dn = sky.sun_direct_normal;
   SkyLutCache luts(sky.radiance);
   const SkyRadianceGrid grid(sky.radiance, settings.threads);
-  const auto sky_radiance = [&grid](const Vec3& d, Spectrum& out) { grid(d, out); };
+  // Specular sky in XYZ (specular_sky_colour.h): one projected sky per distinct Fresnel table.
+  std::vector<std::unique_ptr<ColourSpecularSky>> specular_skies;
+  std::vector<const ColourSpecularSky*> slot_specular(slot_materials.size(), nullptr);
+  {
+    std::vector<const FresnelTable*> tables;
+    for (std::size_t k = 0; k < slot_materials.size(); ++k) {
+      const Material& m = *slot_materials[k];
+      if (!m.has_specular()) continue;
+      const FresnelTable* t = m.specular_lobe(settings.paper_scale).fresnel;
+      std::size_t i = 0;
+      while (i < tables.size() && tables[i] != t) ++i;
+      if (i == tables.size()) {
+        tables.push_back(t);
+        specular_skies.push_back(std::make_unique<ColourSpecularSky>(grid, t));
+      }
+      slot_specular[k] = specular_skies[i].get();
+    }
+  }
+  const Spectrum xyz_weight_spectra[3] = {xyz_weights(0), xyz_weights(1), xyz_weights(2)};
+  const ProjectedSkyGrid background = grid.project(xyz_weight_spectra);
 
   std::vector<ShadedRgb> shaded(pass.surfaces.size());
   in_arena(settings.threads, [&] {
@@ -235,8 +206,8 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
                             out.sky_diffuse = Vec3::Zero();
                           }
                           if (m.has_specular()) {
-                            out.sky_specular = spectrum_to_linear_srgb(specular_sky_radiance(
-                                view, ss.view_dir, m.specular_lobe(settings.paper_scale), sky_radiance, settings.specular));
+                            out.sky_specular = xyz_to_linear_srgb(slot_specular[ss.material_slot]->radiance_xyz(
+                                view, ss.view_dir, m.specular_lobe(settings.paper_scale), settings.specular));
                           } else {
                             out.sky_specular = Vec3::Zero();
                           }
@@ -254,14 +225,14 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   const double inv = 1.0 / static_cast<double>(spp);
   in_arena(settings.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_pixels, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      Spectrum l;
+      double xyz[ProjectedSkyGrid::kMaxChannels];
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
         Vec3 acc[5] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
         for (std::size_t i = 0; i < spp; ++i) {
           const std::uint32_t k = pass.sample_surface[p * spp + i];
           if (k == GeometryPass::kBackground) {
-            grid(pass.sample_direction[p * spp + i], l);
-            acc[4] += spectrum_to_linear_srgb(l);
+            background.lookup(pass.sample_direction[p * spp + i], xyz);
+            acc[4] += xyz_to_linear_srgb(Xyz{xyz[0], xyz[1], xyz[2]});
             continue;
           }
           const ShadedRgb& s = shaded[k];

@@ -15,7 +15,8 @@
 //     sun_specular = s f_s(S, V) · E_dn · (N·S) · vis_sun                       (sun_shading.h)
 //     sky_diffuse  = (1 − s)ρ_d/π · Σ_bands w Σ_visible [E_l(α1) − E_l(α0)]     (seed eq. 1, sky_lut.h)
 //     sky_specular = ∫_visible sky s f_s(ω, V) L(ω) (N·ω) dω, ε-truncated march (seed eqs. 7–10,
-//                    specular_sky.h)
+//                    specular_sky.h), evaluated directly in XYZ (specular_sky_colour.h) on the
+//                    sky resampled on a grid (sky_radiance_grid.h)
 // Every term is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹ on the 41-sample grid) converted to linear
 // sRGB through CIE 1931 XYZ (colour.h): X, Y, Z = ∫ I(λ) x̄, ȳ, z̄(λ) dλ, so the OUTPUT UNIT IS
 // W·m⁻²·sr⁻¹ weighted by the colour-matching functions (Y is luminance / 683 lm·W⁻¹). A pixel is
@@ -45,16 +46,7 @@ namespace skyband {
 struct RenderSettings {
   int samples_per_pixel = 1;       // anti-aliasing pattern of camera.h
   VisibilityOptions visibility;    // bands (N), adaptive tolerance (0 = fixed N), offsets
-  // ε and steps of the partial-sky march. The renderer caps the steps at 0.1 rad along α and
-  // 0.2 rad in δ (the library defaults are 0.05 / 0.1): the caps only bind for wide lobes
-  // (m > 0.2, e.g. paint), whose integrand is smooth on that scale and is integrated with
-  // Simpson's rule per cell; it makes painted walls ~4× cheaper to shade.
-  SpecularSkyOptions specular = [] {
-    SpecularSkyOptions o;
-    o.max_alpha_step_rad = 0.1;
-    o.max_delta_step_rad = 0.2;
-    return o;
-  }();
+  SpecularSkyOptions specular;    // ε and steps of the partial-sky march (specular_sky.h)
   bool paper_scale = false;        // Cook–Torrance 1982 scale (×4) instead of the microfacet form
   int threads = 0;                 // 0 = all cores
 };

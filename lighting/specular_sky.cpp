@@ -6,37 +6,84 @@
 namespace skyband::specular_detail {
 
 namespace {
-// A band split finer than this is a parameter error upstream (m tiny but above the mirror
+// A segment split finer than this is a parameter error upstream (m tiny but above the mirror
 // threshold); capping keeps the cost bounded instead of hanging.
-constexpr int kMaxPiecesPerBand = 1 << 16;
+constexpr int kMaxPiecesPerSegment = 1 << 16;
 }  // namespace
 
-int line_count(const BandFrame& f, const BandRecord& b, double step_rad) {
-  const double width = f.delta_at(b.s1) - f.delta_at(b.s0);
-  if (!(width > 0.0) || !(step_rad > 0.0)) return 1;
-  const double pieces = std::ceil(width / step_rad);
-  if (pieces <= 1.0) return 1;
-  return 2 * static_cast<int>(std::min(pieces, static_cast<double>(kMaxPiecesPerBand)));
+bool same_visibility(const PointVisibilityView& v, std::size_t a, std::size_t b, double lo, double hi) {
+  const std::span<const VisibleInterval> x = v.visible(a), y = v.visible(b);
+  std::size_t i = 0, j = 0;
+  for (;;) {
+    // Skip intervals wholly outside [lo, hi].
+    while (i < x.size() && !(clamp_alpha(x[i].alpha1_rad) > lo && clamp_alpha(x[i].alpha0_rad) < hi)) ++i;
+    while (j < y.size() && !(clamp_alpha(y[j].alpha1_rad) > lo && clamp_alpha(y[j].alpha0_rad) < hi)) ++j;
+    if (i == x.size() || j == y.size()) return i == x.size() && j == y.size();
+    if (std::max(clamp_alpha(x[i].alpha0_rad), lo) != std::max(clamp_alpha(y[j].alpha0_rad), lo) ||
+        std::min(clamp_alpha(x[i].alpha1_rad), hi) != std::min(clamp_alpha(y[j].alpha1_rad), hi))
+      return false;
+    ++i;
+    ++j;
+  }
 }
 
-Line band_line(const BandFrame& f, const BandRecord& b, std::size_t band, int j, int count) {
-  Line line;
-  line.band = band;
-  if (count <= 1) {
-    // The band itself: seed eq. 7 (its sample plane, weight w_b).
-    line.delta_rad = b.delta_rad;
-    line.weight = double(b.s1) - double(b.s0);
+Segment segment_at(const PointContext& c, std::size_t b, int dir, double step_rad, double single_width_rad) {
+  const PointVisibilityView& v = *c.view;
+  Segment s;
+  s.b0 = s.b1 = b;
+  if (dir <= 0)
+    while (s.b0 > 0 && same_visibility(v, s.b0 - 1, b, c.alpha_lo, c.alpha_hi)) --s.b0;
+  if (dir >= 0)
+    while (s.b1 + 1 < v.band_count() && same_visibility(v, s.b1 + 1, b, c.alpha_lo, c.alpha_hi)) ++s.b1;
+  const BandFrame& f = v.frame();
+  s.d0_rad = f.delta_at(v.band(s.b0).s0);
+  s.d1_rad = f.delta_at(v.band(s.b1).s1);
+  const double width = s.d1_rad - s.d0_rad;
+  if (!(width > single_width_rad) || !(step_rad > 0.0)) {
+    s.count = 1;
   } else {
-    // Piece j/2 of count/2 equal-δ pieces, Gauss–Legendre node j%2: δ = mid ∓ h/(2√3),
-    // weight (h/2)·cos(δ − β) (the δ-measure of N·ω dω, band_frame.h).
-    const double d0 = f.delta_at(b.s0), d1 = f.delta_at(b.s1);
-    const double h = (d1 - d0) / (count / 2);
-    const double mid = d0 + (j / 2 + 0.5) * h;
-    line.delta_rad = mid + (j % 2 == 0 ? -1.0 : 1.0) * h / (2.0 * std::sqrt(3.0));
-    line.weight = 0.5 * h * std::cos(line.delta_rad - f.beta_rad);
+    const double pieces = std::max(1.0, std::ceil(width / step_rad));
+    s.count = 3 * static_cast<int>(std::min(pieces, static_cast<double>(kMaxPiecesPerSegment)));
+  }
+  return s;
+}
+
+Line segment_line(const PointVisibilityView& v, const Segment& s, int j) {
+  const BandFrame& f = v.frame();
+  Line line;
+  line.band = s.b0;  // every band of the segment has the same visible intervals
+  if (s.count <= 1) {
+    if (s.b0 == s.b1) {
+      // One band: its own sample plane, weight w_b (seed eq. 7).
+      line.delta_rad = v.band(s.b0).delta_rad;
+    } else {
+      // A merged run: the plane at its s-midpoint (the midpoint rule in the weight s).
+      line.delta_rad = f.delta_at(0.5 * (double(v.band(s.b0).s0) + double(v.band(s.b1).s1)));
+    }
+    line.weight = double(v.band(s.b1).s1) - double(v.band(s.b0).s0);
+  } else {
+    // Piece j/3 of count/3 equal-δ pieces, Gauss–Legendre node j%3, weight (h/2)·w·cos(δ − β)
+    // (the δ-measure of N·ω dω, band_frame.h).
+    const double h = (s.d1_rad - s.d0_rad) / (s.count / 3);
+    const double mid = s.d0_rad + (j / 3 + 0.5) * h;
+    line.delta_rad = mid + 0.5 * h * kGl3X[j % 3];
+    line.weight = 0.5 * h * kGl3W[j % 3] * std::cos(line.delta_rad - f.beta_rad);
   }
   line.u = std::cos(line.delta_rad) * f.h + std::sin(line.delta_rad) * f.z;
   return line;
+}
+
+int nearest_line(const Segment& s, double delta_rad) {
+  if (s.count <= 1 || !(s.d1_rad > s.d0_rad)) return 0;
+  const int pieces = s.count / 3;
+  const double h = (s.d1_rad - s.d0_rad) / pieces;
+  const double x = (delta_rad - s.d0_rad) / h;
+  const int piece = std::clamp(static_cast<int>(x), 0, pieces - 1);
+  const double t = 2.0 * (x - piece) - 1.0;  // position in the piece, [−1, 1]
+  int best = 0;
+  for (int n = 1; n < 3; ++n)
+    if (std::abs(t - kGl3X[n]) < std::abs(t - kGl3X[best])) best = n;
+  return 3 * piece + best;
 }
 
 std::size_t band_of_s(const PointVisibilityView& v, double s) {

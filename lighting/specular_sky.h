@@ -14,26 +14,44 @@
 //  1. Q = 2(N·V)N − V, the mirror direction. The sample line nearest Q is found and α* (the
 //     point of a line nearest Q) is computed per line: α* = atan2(Q·u, Q·x) clamped to [0, π].
 //  2. Along a line, from α* toward each end in cells of dα = c_α·m (capped at
-//     max_alpha_step_rad), so the lobe (angular width ≈ √2·m) is always resolved; occluded parts
-//     are skipped, the end points of visible intervals are evaluated exactly. Each visible piece
-//     uses Simpson's rule (the trapezoid nodes plus the piece's midpoint) instead of the seed's
-//     trapezoid: where an occluder leaves only a lobe tail visible, the trapezoid's h²f''/12
-//     error is several % of what remains at dα = m/2, and halving dα costs the same as Simpson's
-//     extra midpoint while gaining only a factor 4 (measured in specular_sky_test). The march stops at
-//     the first node where G ≤ ε·G_max (G_max the largest G seen so far at this point) and G is
-//     no longer rising (the seed stops at G < ε alone; at grazing views and near the pencil axis
-//     G(α*) sits on a rising flank and that loses several % of wide lobes).
+//     max_alpha_step_rad); occluded parts are skipped, every visible piece of a cell (the cell
+//     cut by the visible intervals, whose ends are exact) gets 3-point Gauss–Legendre. The lobe
+//     is close to a Gaussian of σ ≈ √2·m in ω (Beckmann, σ = m/√2 in the half-vector angle):
+//     GL-3 on cells of 1.5·m ≈ 1.1σ errs by ~h⁷f⁽⁶⁾/2·10⁶ ≈ 10⁻⁵ of the lobe, and cut pieces
+//     are smooth too, so no node is wasted on resolving a step (bench_specular measures it).
+//     The march stops after the first cell whose largest G is ≤ ε·G_max (G_max the largest G
+//     seen so far at this point) and no larger than the previous cell's (the seed stops at
+//     G < ε alone; at grazing views and near the pencil axis G(α*) sits on a rising flank and
+//     that loses several % of wide lobes). A wholly occluded cell costs one evaluation, at its
+//     far end, for this test.
 //  3. Lines are visited outward from Q's line in both δ directions while the line's largest G is
 //     ≥ ε·G_max or still rising from line to line (seed: while G(α*) ≥ ε).
-//  4. Sub-band integration in δ: where a band is wider (in δ) than c_δ·m (or max_delta_step_rad),
-//     it is split into K pieces of equal δ width with two Gauss–Legendre lines each (weights
-//     (h/2)·cos(δ − β)). One line per piece (the midpoint rule the bands themselves use) was
-//     measured 3% low where the horizon cuts a narrow lobe's tail (specular_sky_test).
+//  4. Integration in δ: visibility is constant across a band, and consecutive bands with
+//     identical visible intervals within the lobe window (open sky, typically) form one
+//     *segment* over which the lobe is smooth. The window is α ∈ [α_Q − R, α_Q + R] with
+//     R = lobe_window_per_m·m: it holds the whole cap of directions within R of Q (see the
+//     code), and lines are integrated only inside it, so merging is exact for what is integrated. A segment at most c₁·m wide in δ (single_line_per_m) is one line (a single band:
+//     its own sample plane and weight w_b, seed eq. 7; the midpoint rule's error (h/σ)²/24 is
+//     ≤ 10⁻³); a wider one is split into pieces of equal δ width ≤ c_δ·m (or max_delta_step_rad)
+//     with three Gauss–Legendre lines each (weights (h/2)·w_k·cos(δ − β)), the rule used along α.
+//     Merging matters: equal-weight bands crowd around the normal (a wall has 64 bands in
+//     90° of δ, the first ones 0.9° wide), so band by band a lobe of m = 0.1 meets ~50 bands.
 //  5. m below mirror_below_m: a perfect mirror, I = w_s F(N·V) L(Q) if Q is visible (the band
 //     containing Q's δ, visible at α_Q), else 0.
 //
-// G here is the channel mean of the integrand w_s f_s L sin²α itself, whereas seed eq. 10 writes
-// L·R_s·sin α; using the integrand makes ε a bound on what each dropped sample contributes.
+// G is a non-negative scalar measure of the integrand w_s f_s L sin²α itself (the spectral
+// integrator: its channel mean; the colour integrator, specular_sky_colour.h: its luminance),
+// whereas seed eq. 10 writes L·R_s·sin α; using the integrand makes ε a bound on what each
+// dropped sample contributes relative to the largest.
+//
+// The march is written once over a *reflection policy* that says what is integrated:
+//     using Value = ...;                          zero-initialised, +=, * double
+//     double eval(const Vec3& w, double v_dot_h, double k, Value& out);
+//         out = k·F(V·H)·L(w) for unit sky direction w and scalar lobe factor k > 0; returns G.
+//     void mirror(const Vec3& q, double n_dot_v, double weight, Value& out);
+//         out = weight·F(N·V)·L(q)  (perfect mirror).
+// SpectralReflection below integrates spectra (41 channels, the library's reference path);
+// specular_sky_colour.h integrates a few colour channels for the renderer.
 //
 // specular_sky_reference() integrates the same quantity without truncation, with an independent
 // rule (3-point Gauss–Legendre in δ per piece, 4-point Gauss–Legendre along α on every visible
@@ -42,6 +60,7 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <type_traits>
 
 #include "geometry/band_frame.h"
 #include "geometry/sky_integral.h"
@@ -53,10 +72,13 @@ namespace skyband {
 
 struct SpecularSkyOptions {
   double epsilon = 1e-3;             // truncation threshold, relative to G_max (seed's ε)
-  double alpha_step_per_m = 0.5;     // dα = alpha_step_per_m · m ...
-  double max_alpha_step_rad = 0.05;  // ... but never coarser than this (sky variation)
-  double delta_step_per_m = 0.25;    // sub-band piece width in δ ≤ delta_step_per_m · m ...
-  double max_delta_step_rad = 0.1;   // ... and ≤ this
+  double alpha_step_per_m = 1.5;     // α cells ≤ alpha_step_per_m · m ...
+  double max_alpha_step_rad = 0.1;   // ... and ≤ this (sky variation under wide lobes)
+  double delta_step_per_m = 1.5;     // δ pieces ≤ delta_step_per_m · m ...
+  double max_delta_step_rad = 0.2;   // ... and ≤ this
+  double single_line_per_m = 0.5;    // a band ≤ this · m wide in δ is one line (seed eq. 7)
+  double grazing_floor = 0.5;        // steps scale with max(N·V, grazing_floor): see step 2
+  double lobe_window_per_m = 7.0;    // lines are integrated only within this · m of Q in α: step 4
   double mirror_below_m = 0.005;     // m below this: perfect mirror (single look-up)
 };
 
@@ -81,14 +103,29 @@ struct PointContext {
   const PointVisibilityView* view = nullptr;
   Vec3 n, v, q;  // normal, unit view direction, mirror direction
   double n_dot_v = 0;
+  double alpha_lo = 0, alpha_hi = kPi;  // the lobe window in α (step 4)
   SpecularLobe lobe;
 };
 
-// Number of sample lines of band b: 1 (the band's own plane, seed eq. 7) when the band is at
-// most `step_rad` wide in δ, else 2 per piece of ≤ step_rad (2-point Gauss–Legendre in δ).
-int line_count(const BandFrame& f, const BandRecord& b, double step_rad);
-// Line j of the `count` lines of band `band`, in increasing δ.
-Line band_line(const BandFrame& f, const BandRecord& b, std::size_t band, int j, int count);
+// A maximal run of consecutive bands [b0, b1] whose visible intervals are identical: visibility
+// is constant across it, so the δ rule may span it (open sky is one segment however many bands
+// it holds). Its δ rule: one line when it is at most `single_width_rad` wide (a single band: its
+// own sample plane and weight, seed eq. 7; a merged run: the plane at its s-midpoint with the
+// run's weight), else 3-point Gauss–Legendre lines on pieces of ≤ step_rad.
+struct Segment {
+  std::size_t b0 = 0, b1 = 0;
+  double d0_rad = 0, d1_rad = 0;
+  int count = 1;  // lines
+};
+// Whether bands a and b have the same visible intervals within [lo, hi] (radians).
+bool same_visibility(const PointVisibilityView& v, std::size_t a, std::size_t b, double lo, double hi);
+// The segment holding band b (visibility compared within the context's lobe window), extended
+// toward lower bands if dir ≤ 0 and higher ones if dir ≥ 0.
+Segment segment_at(const PointContext& c, std::size_t b, int dir, double step_rad, double single_width_rad);
+// Line j of `count` lines of the segment, in increasing δ.
+Line segment_line(const PointVisibilityView& v, const Segment& s, int j);
+// The line of the segment nearest δ.
+int nearest_line(const Segment& s, double delta_rad);
 // Index of the band whose weight range holds s (clamped to the first/last band).
 std::size_t band_of_s(const PointVisibilityView& v, double s);
 // Weight coordinate s = sin(δ − β) of direction q, clamped to the face's sky range.
@@ -100,9 +137,13 @@ bool alpha_visible(std::span<const VisibleInterval> visible, double alpha_rad);
 // Per-point setup; false when V is at or behind the surface (nothing reflected toward V).
 bool make_context(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, PointContext& c);
 
-// Integrand w_s f_s L sin²α at α on `line` into `out`; returns its channel mean (G).
-template <class Radiance>
-double integrand(const PointContext& c, const Line& line, double alpha, Radiance& sky, Spectrum& out,
+// 3-point Gauss–Legendre on [−1, 1].
+inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
+
+// Integrand w_s f_s L sin²α at α on `line` into `out`; returns its G.
+template <class Policy>
+double integrand(const PointContext& c, const Line& line, double alpha, Policy& p, typename Policy::Value& out,
                  SpecularSkyStats& stats) {
   const BandFrame& f = c.view->frame();
   const double sa = std::sin(alpha);
@@ -111,27 +152,18 @@ double integrand(const PointContext& c, const Line& line, double alpha, Radiance
   double k = 0;
   if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor(mc) * sa * sa;
   if (!(k > 0.0)) {
-    out = Spectrum{};
+    out = typename Policy::Value{};
     return 0.0;
   }
-  sky(w, out);
   ++stats.radiance_evals;
-  if (c.lobe.fresnel) {
-    Spectrum fr;
-    c.lobe.fresnel->eval(mc.v_dot_h, fr);
-    out *= fr;
-  }
-  out *= k;
-  double mean = 0;
-  for (int i = 0; i < kSpectrumSamples; ++i) mean += out[i];
-  return mean / kSpectrumSamples;
+  return p.eval(w, mc.v_dot_h, k, out);
 }
 
-// March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of
-// `line`; adds ∫ to `acc` (unweighted) and updates g_max. f_start/g_start: integrand at α*.
-template <class Radiance>
-void march(const PointContext& c, const Line& line, double alpha_star, const Spectrum& f_start, double g_start,
-           int dir, double step, double eps, double& g_max, double& line_max, Spectrum& acc, Radiance& sky,
+// March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of `line`;
+// adds ∫ to `acc` (unweighted) and updates g_max / line_max. g_start: G at α*.
+template <class Policy>
+void march(const PointContext& c, const Line& line, double alpha_star, double g_start, int dir, double step,
+           double eps, double& g_max, double& line_max, typename Policy::Value& acc, Policy& p,
            SpecularSkyStats& stats) {
   const std::span<const VisibleInterval> vis = c.view->visible(line.band);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(vis.size());
@@ -143,155 +175,181 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Spe
     idx = count - 1;
     while (idx >= 0 && clamp_alpha(vis[idx].alpha0_rad) >= alpha_star) --idx;
   }
-  Spectrum f_a = f_start, f_b, f_lo, f_hi, f_mid;
-  double a = alpha_star, g_a = g_start, g_b = g_start;
-  const double end = dir > 0 ? kPi : 0.0;
+  typename Policy::Value f;
+  double a = alpha_star, g_prev = g_start;
+  const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
   while (dir > 0 ? a < end : a > end) {
     const double b = dir > 0 ? std::min(a + step, end) : std::max(a - step, end);
-    g_b = integrand(c, line, b, sky, f_b, stats);
-    // Cell [lo_cell, hi_cell] in increasing α.
     const double lo_cell = std::min(a, b), hi_cell = std::max(a, b);
-    const Spectrum& f_lo_cell = dir > 0 ? f_a : f_b;
-    const Spectrum& f_hi_cell = dir > 0 ? f_b : f_a;
+    double cell_g = 0;
+    bool any = false;
     while (idx >= 0 && idx < count) {
       const double i0 = clamp_alpha(vis[idx].alpha0_rad), i1 = clamp_alpha(vis[idx].alpha1_rad);
       if (dir > 0 ? i0 >= hi_cell : i1 <= lo_cell) break;  // next interval starts beyond this cell
       const double lo = std::max(lo_cell, i0), hi = std::min(hi_cell, i1);
       if (hi > lo) {
-        const Spectrum* pl = &f_lo_cell;
-        const Spectrum* ph = &f_hi_cell;
-        if (lo > lo_cell) { integrand(c, line, lo, sky, f_lo, stats); pl = &f_lo; }
-        if (hi < hi_cell) { integrand(c, line, hi, sky, f_hi, stats); ph = &f_hi; }
-        integrand(c, line, 0.5 * (lo + hi), sky, f_mid, stats);
-        const double sixth = (hi - lo) / 6.0;  // Simpson: (len/6)(f_lo + 4 f_mid + f_hi)
-        for (int i = 0; i < kSpectrumSamples; ++i) acc[i] += sixth * ((*pl)[i] + 4.0 * f_mid[i] + (*ph)[i]);
+        const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        for (int n = 0; n < 3; ++n) {
+          const double g = integrand(c, line, mid + half * kGl3X[n], p, f, stats);
+          if (g > 0.0) acc += f * (half * kGl3W[n]);
+          cell_g = std::max(cell_g, g);
+        }
+        any = true;
       }
       // Move on only if the interval ends inside this cell (in the march direction).
       if (dir > 0 ? i1 <= hi_cell : i0 >= lo_cell) idx += dir;
       else break;
     }
-    g_max = std::max(g_max, g_b);
-    line_max = std::max(line_max, g_b);
+    if (!any) cell_g = integrand(c, line, b, p, f, stats);  // wholly occluded: G decides whether to go on
+    g_max = std::max(g_max, cell_g);
+    line_max = std::max(line_max, cell_g);
     // Stop once G is negligible AND no longer rising (G at α* can sit on the rising flank: near
     // the pencil axis sin²α → 0, or off-specular peaks at grazing views).
-    const bool stop = g_b <= eps * g_max && g_b <= g_a;
+    const bool stop = cell_g <= eps * g_max && cell_g <= g_prev;
     a = b;
-    f_a = f_b;
-    g_a = g_b;
+    g_prev = cell_g;
     if (stop) break;
   }
 }
 
 // Integrates one line from its α* both ways into acc (times the line's weight); returns the
 // largest G met on the line.
-template <class Radiance>
-double integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max, Spectrum& acc,
-                      Radiance& sky, SpecularSkyStats& stats) {
-  const double a_star = nearest_alpha(c.view->frame(), line.u, c.q);
-  Spectrum f_star;
-  const double g_star = integrand(c, line, a_star, sky, f_star, stats);
+template <class Policy>
+double integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max,
+                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats) {
+  const double a_star = std::clamp(nearest_alpha(c.view->frame(), line.u, c.q), c.alpha_lo, c.alpha_hi);
+  typename Policy::Value f_star;
+  const double g_star = integrand(c, line, a_star, p, f_star, stats);  // for the stop tests only
   g_max = std::max(g_max, g_star);
   double line_max = g_star;
-  Spectrum line_sum;
-  march(c, line, a_star, f_star, g_star, +1, step, eps, g_max, line_max, line_sum, sky, stats);
-  march(c, line, a_star, f_star, g_star, -1, step, eps, g_max, line_max, line_sum, sky, stats);
+  typename Policy::Value line_sum;
+  march(c, line, a_star, g_star, +1, step, eps, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, g_star, -1, step, eps, g_max, line_max, line_sum, p, stats);
   acc += line_sum * line.weight;
   ++stats.lines;
   return line_max;
 }
 
-template <class Radiance>
-Spectrum mirror_lookup(const PointContext& c, Radiance& sky, SpecularSkyStats& stats) {
-  const BandFrame& f = c.view->frame();
-  if (c.q.dot(f.z) < 0.0) return Spectrum{};  // mirror direction below the horizon: not sky
-  double alpha, delta;
-  f.angles_of(c.q, alpha, delta);
-  const std::size_t b = band_of_s(*c.view, s_of_direction(f, c.q));
-  if (!alpha_visible(c.view->visible(b), alpha)) return Spectrum{};
-  Spectrum l;
-  sky(c.q, l);
-  ++stats.radiance_evals;
-  if (c.lobe.fresnel) {
-    Spectrum fr;
-    c.lobe.fresnel->eval(c.n_dot_v, fr);
-    l *= fr;
-  }
-  return l * c.lobe.weight;
-}
-
 // The opening both integrators share: nothing to integrate (no bands, no lobe, the view behind
-// the face), or a perfect mirror (one look-up of L in the mirror direction). True when `acc` is
-// the answer.
-template <class Radiance>
-bool trivial_case(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Radiance& sky,
-                  const SpecularSkyOptions& opt, PointContext& c, SpecularSkyStats& stats, Spectrum& acc) {
+// the face), or a perfect mirror (one look-up of L in the mirror direction, if visible). True
+// when `acc` is the answer.
+template <class Policy>
+bool trivial_case(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Policy& p,
+                  const SpecularSkyOptions& opt, PointContext& c, SpecularSkyStats& stats,
+                  typename Policy::Value& acc) {
   if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c)) return true;
   if (lobe.roughness_m < opt.mirror_below_m) {
-    acc = mirror_lookup(c, sky, stats);
+    const BandFrame& f = view.frame();
+    if (c.q.dot(f.z) < 0.0) return true;  // mirror direction below the horizon: not sky
+    double alpha, delta;
+    f.angles_of(c.q, alpha, delta);
+    if (!alpha_visible(view.visible(band_of_s(view, s_of_direction(f, c.q))), alpha)) return true;
+    ++stats.radiance_evals;
+    p.mirror(c.q, c.n_dot_v, lobe.weight, acc);
     return true;
   }
   return false;
 }
 
-}  // namespace specular_detail
-
-// The ε-truncated partial-sky integral (seed §3). `sky(const Vec3& world_dir, Spectrum& out)`
-// gives L in W·m⁻²·sr⁻¹·nm⁻¹; `view_dir` points from the surface toward the eye (any length).
-template <class Radiance>
-Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-                               Radiance&& sky, const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
-  using namespace specular_detail;
-  SpecularSkyStats stats;
-  Spectrum acc;
+// The ε-truncated partial-sky integral over any reflection policy (see the top of this file).
+template <class Policy>
+typename Policy::Value specular_sky_integral(const PointVisibilityView& view, const Vec3& view_dir,
+                                             const SpecularLobe& lobe, Policy& p, const SpecularSkyOptions& opt,
+                                             SpecularSkyStats& stats) {
+  typename Policy::Value acc;
   PointContext c;
-  if (trivial_case(view, view_dir, lobe, sky, opt, c, stats, acc)) {
-    if (stats_out) *stats_out = stats;
-    return acc;
-  }
+  if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) return acc;
   const BandFrame& f = view.frame();
-  const double m = lobe.roughness_m;
+  // The lobe's angular scale: √2·m, compressed across the plane of incidence by V·H ≈ N·V at
+  // grazing views (the reflected direction turns by 2(V·H)·dθ when H tilts out of that plane).
+  const double m = lobe.roughness_m * std::max(c.n_dot_v, opt.grazing_floor);
+  // The lobe window: every direction within R of Q has |α − α_Q| ≤ R (α is the angle from the
+  // axis x, and |∠(ω, x) − ∠(Q, x)| ≤ ∠(ω, Q)), so integrating only α ∈ [α_Q − R, α_Q + R]
+  // drops nothing of the cap ∠(ω, Q) ≤ R, outside which the Beckmann factor exp(−tan²θ_h/m²)
+  // with θ_h ≈ ∠(ω, Q)/2 is below e^{−R²/4m²} = 5·10⁻⁶ of its peak at R = 7m.
+  {
+    double alpha_q, delta_q;
+    f.angles_of(c.q, alpha_q, delta_q);
+    const double r = opt.lobe_window_per_m * lobe.roughness_m;
+    c.alpha_lo = std::max(0.0, alpha_q - r);
+    c.alpha_hi = std::min(kPi, alpha_q + r);
+  }
   const double a_step = std::min(opt.alpha_step_per_m * m, opt.max_alpha_step_rad);
   const double d_step = std::min(opt.delta_step_per_m * m, opt.max_delta_step_rad);
+  const double single = opt.single_line_per_m * m;
   const double eps = opt.epsilon;
 
-  // Start: the piece of Q's band that holds δ_Q.
+  // Start: the line of Q's segment nearest δ_Q.
   const double s_q = s_of_direction(f, c.q);
-  const std::size_t b_q = band_of_s(view, s_q);
-  const int k_count_q = line_count(f, view.band(b_q), d_step);
-  const double d_lo = f.delta_at(view.band(b_q).s0), d_hi = f.delta_at(view.band(b_q).s1);
-  const double d_q = f.delta_at(s_q);
-  int k_q = 0;
-  if (k_count_q > 1 && d_hi > d_lo) {
-    const double x = (d_q - d_lo) / (d_hi - d_lo) * (k_count_q / 2);  // piece coordinate
-    const int piece = std::clamp(static_cast<int>(x), 0, k_count_q / 2 - 1);
-    k_q = 2 * piece + (x - piece > 0.5 ? 1 : 0);
-  }
+  const Segment seg_q = segment_at(c, band_of_s(view, s_q), 0, d_step, single);
+  const int k_q = nearest_line(seg_q, f.delta_at(s_q));
 
   double g_max = 0;
-  const double first_max =
-      integrate_line(c, band_line(f, view.band(b_q), b_q, k_q, k_count_q), a_step, eps, g_max, acc, sky, stats);
-  // Outward in δ: lower pieces/bands, then higher ones, each until a line's largest G is below
-  // ε·G_max and no longer rising from line to line.
+  const double first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_step, eps, g_max, acc, p, stats);
+  // Outward in δ: lower lines/segments, then higher ones, each until a line's largest G is
+  // below ε·G_max and no longer rising from line to line.
   for (int dir : {-1, +1}) {
-    std::ptrdiff_t b = static_cast<std::ptrdiff_t>(b_q);
-    int k = k_q, kc = k_count_q;
+    Segment seg = seg_q;
+    int k = k_q;
     double prev_max = first_max;
     for (;;) {
       k += dir;
-      if (k < 0 || k >= kc) {
-        b += dir;
-        if (b < 0 || b >= static_cast<std::ptrdiff_t>(view.band_count())) break;
-        kc = line_count(f, view.band(static_cast<std::size_t>(b)), d_step);
-        k = dir > 0 ? 0 : kc - 1;
+      if (k < 0 || k >= seg.count) {
+        if (dir < 0 ? seg.b0 == 0 : seg.b1 + 1 >= view.band_count()) break;
+        seg = segment_at(c, dir < 0 ? seg.b0 - 1 : seg.b1 + 1, dir, d_step, single);
+        k = dir > 0 ? 0 : seg.count - 1;
       }
-      const std::size_t bu = static_cast<std::size_t>(b);
-      const double line_max = integrate_line(c, band_line(f, view.band(bu), bu, k, kc), a_step, eps, g_max, acc, sky, stats);
+      const double line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats);
       if (line_max <= eps * g_max && line_max <= prev_max) break;
       prev_max = line_max;
     }
   }
-  if (stats_out) *stats_out = stats;
   return acc;
+}
+
+}  // namespace specular_detail
+
+// The spectral reflection policy: L from `sky(const Vec3& world_dir, Spectrum& out)` in
+// W·m⁻²·sr⁻¹·nm⁻¹, F from the lobe's Fresnel table (nullptr: F = 1); G = channel mean.
+template <class Radiance>
+struct SpectralReflection {
+  using Value = Spectrum;
+  Radiance& sky;
+  const FresnelTable* fresnel = nullptr;
+
+  double eval(const Vec3& w, double v_dot_h, double k, Spectrum& out) {
+    sky(w, out);
+    if (fresnel) {
+      Spectrum fr;
+      fresnel->eval(v_dot_h, fr);
+      out *= fr;
+    }
+    out *= k;
+    double mean = 0;
+    for (int i = 0; i < kSpectrumSamples; ++i) mean += out[i];
+    return std::max(mean / kSpectrumSamples, 0.0);
+  }
+  void mirror(const Vec3& q, double n_dot_v, double weight, Spectrum& out) {
+    sky(q, out);
+    if (fresnel) {
+      Spectrum fr;
+      fresnel->eval(n_dot_v, fr);
+      out *= fr;
+    }
+    out *= weight;
+  }
+};
+
+// The ε-truncated partial-sky integral (seed §3), spectral. `view_dir` points from the surface
+// toward the eye (any length).
+template <class Radiance>
+Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                               Radiance&& sky, const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
+  SpecularSkyStats stats;
+  SpectralReflection<std::remove_reference_t<Radiance>> p{sky, lobe.fresnel};
+  const Spectrum r = specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats);
+  if (stats_out) *stats_out = stats;
+  return r;
 }
 
 // Reference: the same integral over every band and visible interval without truncation.
@@ -302,14 +360,13 @@ Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& vie
                                 Radiance&& sky, double step_per_m = 0.5, double max_step_rad = 0.02,
                                 const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
   using namespace specular_detail;
-  static constexpr double x3[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static constexpr double w3[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
   static constexpr double x4[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
   static constexpr double w4[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
   SpecularSkyStats stats;
   Spectrum acc;
   PointContext c;
-  if (trivial_case(view, view_dir, lobe, sky, opt, c, stats, acc)) {
+  SpectralReflection<std::remove_reference_t<Radiance>> p{sky, lobe.fresnel};
+  if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) {
     if (stats_out) *stats_out = stats;
     return acc;
   }
@@ -320,13 +377,13 @@ Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& vie
     const double d0 = f.delta_at(view.band(b).s0), d1 = f.delta_at(view.band(b).s1);
     const int kd = std::max(1, static_cast<int>(std::ceil((d1 - d0) / step)));
     const double hd = (d1 - d0) / kd;
-    for (int p = 0; p < kd; ++p)
+    for (int pc = 0; pc < kd; ++pc)
       for (int gd = 0; gd < 3; ++gd) {
         Line line;
         line.band = b;
-        line.delta_rad = d0 + (p + 0.5) * hd + 0.5 * hd * x3[gd];
+        line.delta_rad = d0 + (pc + 0.5) * hd + 0.5 * hd * kGl3X[gd];
         line.u = std::cos(line.delta_rad) * f.h + std::sin(line.delta_rad) * f.z;
-        line.weight = 0.5 * hd * w3[gd] * std::cos(line.delta_rad - f.beta_rad);
+        line.weight = 0.5 * hd * kGl3W[gd] * std::cos(line.delta_rad - f.beta_rad);
         Spectrum line_sum;
         for (const VisibleInterval& iv : view.visible(b)) {
           const double a0 = clamp_alpha(iv.alpha0_rad), a1 = clamp_alpha(iv.alpha1_rad);
@@ -336,7 +393,7 @@ Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& vie
           for (int q = 0; q < ka; ++q)
             for (int ga = 0; ga < 4; ++ga) {
               const double a = a0 + (q + 0.5) * ha + 0.5 * ha * x4[ga];
-              if (integrand(c, line, a, sky, val, stats) > 0.0) line_sum += val * (0.5 * ha * w4[ga]);
+              if (integrand(c, line, a, p, val, stats) > 0.0) line_sum += val * (0.5 * ha * w4[ga]);
             }
         }
         acc += line_sum * line.weight;

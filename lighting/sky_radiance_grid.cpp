@@ -1,0 +1,136 @@
+#include "lighting/sky_radiance_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace skyband {
+
+namespace {
+
+constexpr int kNodes = SkyRadianceGrid::kCells + 1;
+static_assert(SkyRadianceGrid::kCells == 400, "ProjectedSkyGrid::kCellsPerAxis must match");
+
+// Unit direction of the point p of the unit disk (inverse stereographic projection); the rim
+// itself is lifted just above the horizon (the sky models are 0 at exactly ω_z = 0 but
+// continuous from above).
+Vec3 disk_direction(double px, double py) {
+  constexpr double kRimRadius = 1.0 - 1e-6;
+  const double r2 = px * px + py * py;
+  if (r2 > kRimRadius * kRimRadius) {
+    const double k = kRimRadius / std::sqrt(r2);
+    px *= k;
+    py *= k;
+  }
+  const double q = px * px + py * py;
+  return Vec3(2.0 * px, 2.0 * py, 1.0 - q) / (1.0 + q);
+}
+
+template <class F>
+void in_arena(int threads, F&& f) {
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(f);
+  } else {
+    f();
+  }
+}
+
+}  // namespace
+
+bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
+  const double len = dir.norm();
+  if (!(dir.z() > 0.0) || !(len > 0.0) || !std::isfinite(len)) return false;
+  const double k = 1.0 / (len + dir.z());  // p = (x, y)/(|ω| + z): the projection of ω/|ω|
+  const double u = (dir.x() * k + 1.0) * 0.5 * cells, v = (dir.y() * k + 1.0) * 0.5 * cells;
+  ix = std::clamp(static_cast<int>(u), 0, cells - 1);
+  iy = std::clamp(static_cast<int>(v), 0, cells - 1);
+  fx = std::clamp(u - ix, 0.0, 1.0);
+  fy = std::clamp(v - iy, 0.0, 1.0);
+  return true;
+}
+
+SkyRadianceGrid::SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads)
+    : data_(static_cast<std::size_t>(kNodes) * kNodes * kSpectrumSamples) {
+  in_arena(threads, [&] {
+    tbb::parallel_for(0, kNodes, [&](int iy) {
+      Spectrum l, inner;
+      const double h = 2.0 / kCells;
+      for (int ix = 0; ix < kNodes; ++ix) {
+        const double px = -1.0 + ix * h, py = -1.0 + iy * h;
+        const double r = std::sqrt(px * px + py * py);
+        if (r <= 1.0) {
+          sky(disk_direction(px, py), l);
+        } else {
+          // Outside the disk: the linear extension across the rim, 2·L(rim) − L(mirror point at
+          // radius 2 − r), so that cells cut by the horizon interpolate a C¹ function (second-
+          // order error) instead of a clamped one (first order). Clamped at 0: radiance.
+          sky(disk_direction(px, py), l);
+          const double k = (2.0 - r) / r;
+          sky(disk_direction(px * k, py * k), inner);
+          for (int i = 0; i < kSpectrumSamples; ++i) l[i] = std::max(0.0, 2.0 * l[i] - inner[i]);
+        }
+        float* d = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kSpectrumSamples];
+        for (int k = 0; k < kSpectrumSamples; ++k) d[k] = static_cast<float>(l[k]);
+      }
+    });
+  });
+}
+
+void SkyRadianceGrid::operator()(const Vec3& dir, Spectrum& out) const {
+  int ix, iy;
+  double fx, fy;
+  if (!sky_grid_cell(dir, kCells, ix, iy, fx, fy)) {
+    out = Spectrum{};
+    return;
+  }
+  const float* a = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kSpectrumSamples];
+  const float* b = a + kSpectrumSamples;                                  // ix + 1
+  const float* c = a + static_cast<std::size_t>(kNodes) * kSpectrumSamples;  // iy + 1
+  const float* d = c + kSpectrumSamples;
+  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  for (int k = 0; k < kSpectrumSamples; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+}
+
+ProjectedSkyGrid SkyRadianceGrid::project(std::span<const Spectrum> weights) const {
+  if (weights.empty() || weights.size() > static_cast<std::size_t>(ProjectedSkyGrid::kMaxChannels))
+    throw std::invalid_argument("SkyRadianceGrid::project: 1 to 12 channels, got " + std::to_string(weights.size()));
+  ProjectedSkyGrid g;
+  g.channels_ = static_cast<int>(weights.size());
+  const std::size_t kC = weights.size();
+  const std::size_t nodes = static_cast<std::size_t>(kNodes) * kNodes;
+  g.data_.assign(nodes * kC, 0.0f);
+  tbb::parallel_for(std::size_t{0}, nodes, std::size_t{4096}, [&](std::size_t n0) {
+    const std::size_t n1 = std::min(n0 + 4096, nodes);
+    for (std::size_t n = n0; n < n1; ++n) {
+      const float* l = &data_[n * kSpectrumSamples];
+      for (std::size_t k = 0; k < weights.size(); ++k) {
+        double s = 0;
+        for (int i = 0; i < kSpectrumSamples; ++i) s += weights[k][i] * l[i];
+        g.data_[n * kC + k] = static_cast<float>(s);
+      }
+    }
+  });
+  return g;
+}
+
+void ProjectedSkyGrid::lookup(const Vec3& dir, double* out) const {
+  int ix, iy;
+  double fx, fy;
+  if (!sky_grid_cell(dir, SkyRadianceGrid::kCells, ix, iy, fx, fy)) {
+    for (int k = 0; k < channels_; ++k) out[k] = 0.0;
+    return;
+  }
+  const std::size_t kC = static_cast<std::size_t>(channels_);
+  const float* a = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kC];
+  const float* b = a + kC;
+  const float* c = a + static_cast<std::size_t>(kNodes) * kC;
+  const float* d = c + kC;
+  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  for (std::size_t k = 0; k < kC; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+}
+
+}  // namespace skyband

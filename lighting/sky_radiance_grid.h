@@ -1,0 +1,79 @@
+#pragma once
+// The sky radiance resampled on a grid for the renderer's many look-ups (the specular march
+// takes hundreds of directions per point; the background one per pixel sample).
+//
+// Parametrisation: the stereographic projection of the upper hemisphere from the nadir,
+//     p = (ω_x, ω_y)/(1 + ω_z),   |p| ≤ 1,
+// on kCells × kCells equal cells over [−1, 1]². No trigonometry per look-up (one square root
+// and one division), smooth everywhere including the zenith (a latitude–longitude grid has a
+// pole there); the angular node spacing dθ = 2·dp/(1 + |p|²) is 2·dp at the zenith and dp at
+// the horizon: 0.57° to 0.29° for kCells = 400. Nodes outside the unit disk hold the linear
+// extension of the sky across the horizon (2·L(rim) − L(mirror point inside), clamped at 0), so
+// cells cut by the horizon interpolate a smooth function too. Bilinear interpolation: error
+// ≤ (h²/8)·max|∂²L| per axis, h the node spacing in p (0.005).
+//
+// SkyRadianceGrid holds spectra (41 floats per node, W·m⁻²·sr⁻¹·nm⁻¹). ProjectedSkyGrid holds
+// up to kMaxChannels linear functionals of them, c_k(ω) = Σ_i P_k(λ_i)·L(λ_i, ω) (e.g. CIE XYZ
+// with P = xyz_weights(), in W·m⁻²·sr⁻¹): the same interpolation commutes with any projection,
+// so projecting nodes first is exact.
+// Directions at or below the horizon (ω_z ≤ 0) give 0, as SkyModel::radiance_into does.
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "geometry/vec3.h"
+#include "lighting/spectrum.h"
+
+namespace skyband {
+
+class ProjectedSkyGrid;
+
+// Grid coordinates of a direction: false at or below the horizon; else cell (ix, iy) and the
+// fractions (fx, fy) ∈ [0, 1] within it.
+bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy);
+
+class SkyRadianceGrid {
+ public:
+  static constexpr int kCells = 400;
+  // `sky(unit world direction, out)`: W·m⁻²·sr⁻¹·nm⁻¹. Evaluated at (kCells + 1)² directions,
+  // in parallel (`threads` = 0: all cores).
+  SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads = 0);
+
+  void operator()(const Vec3& dir, Spectrum& out) const;  // any non-zero length
+  ProjectedSkyGrid project(std::span<const Spectrum> weights) const;
+
+ private:
+  std::vector<float> data_;  // [row iy][column ix][wavelength]
+};
+
+class ProjectedSkyGrid {
+ public:
+  static constexpr int kMaxChannels = 12;
+  int channels() const { return channels_; }
+  // out[k] = c_k(dir), k < channels().
+  void lookup(const Vec3& dir, double* out) const;
+  // The same for a compile-time channel count N == channels() (the renderer's hot loop).
+  template <int N>
+  void lookup_n(const Vec3& dir, double* out) const {
+    int ix, iy;
+    double fx, fy;
+    if (!sky_grid_cell(dir, kCellsPerAxis, ix, iy, fx, fy)) {
+      for (int k = 0; k < N; ++k) out[k] = 0.0;
+      return;
+    }
+    const float* a = &data_[(static_cast<std::size_t>(iy) * (kCellsPerAxis + 1) + static_cast<std::size_t>(ix)) * N];
+    const float* b = a + N;
+    const float* c = a + static_cast<std::size_t>(kCellsPerAxis + 1) * N;
+    const float* d = c + N;
+    const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+    for (int k = 0; k < N; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+  }
+
+ private:
+  friend class SkyRadianceGrid;
+  static constexpr int kCellsPerAxis = 400;  // = SkyRadianceGrid::kCells
+  int channels_ = 0;
+  std::vector<float> data_;  // [row][column][channel]
+};
+
+}  // namespace skyband

@@ -1,0 +1,85 @@
+#pragma once
+// The specular sky integral of specular_sky.h evaluated directly in CIE XYZ, for the renderer.
+//
+// The renderer keeps only XYZ (→ linear sRGB) of the reflected spectrum I(λ), a linear map, so
+//     XYZ_c = Σ_i W_c(λ_i)·I(λ_i) = ∫ dω k(ω) Σ_j U_j(V·H) · [Σ_i W_c(λ_i) V_j(λ_i) L(λ_i, ω)]
+// with W_c the CIE weights (colour.h: xyz_weights), k(ω) = w_s f_s/F · sin²α the lobe factor and
+// F ≈ Σ_j U_j V_j the Fresnel table's low-rank separation (fresnel_factors.h). The bracket is a
+// sky pre-projected onto 3·r spectra (ProjectedSkyGrid), so each direction costs 3·r look-ups
+// and r Fresnel values instead of 41 of each. Exact up to the separation's tolerance (10⁻⁴ in F)
+// and identical in quadrature to the spectral path: the same march, the same nodes. Only the
+// truncation measure G differs: the luminance channel Y of the integrand here, the channel mean
+// there (both non-negative measures of the same integrand).
+#include <algorithm>
+#include <array>
+#include <memory>
+
+#include "lighting/colour.h"
+#include "lighting/fresnel_factors.h"
+#include "lighting/sky_radiance_grid.h"
+#include "lighting/specular_sky.h"
+
+namespace skyband {
+
+// Accumulator of the colour march: channel c·R + j holds XYZ component c through Fresnel
+// factor j (R = the Fresnel rank).
+template <int N>
+struct ColourChannels {
+  std::array<double, N> v{};
+  ColourChannels& operator+=(const ColourChannels& o) {
+    for (int k = 0; k < N; ++k) v[k] += o.v[k];
+    return *this;
+  }
+  friend ColourChannels operator*(ColourChannels a, double s) {
+    for (double& x : a.v) x *= s;
+    return a;
+  }
+};
+
+// One specular material under one sky: its Fresnel separation and the sky projected for it.
+class ColourSpecularSky {
+ public:
+  // `fresnel` nullptr: F = 1. The grid is only read during construction.
+  ColourSpecularSky(const SkyRadianceGrid& sky, const FresnelTable* fresnel);
+
+  // XYZ (W·m⁻²·sr⁻¹, CIE-weighted) of the ε-truncated specular sky integral toward view_dir.
+  // lobe.fresnel must be the table this object was built for (else std::logic_error).
+  Xyz radiance_xyz(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                   const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats = nullptr) const;
+
+  int rank() const { return rank_; }
+
+  // The reflection policy of specular_sky.h for Fresnel rank R (public for the march template).
+  template <int R>
+  struct Policy {
+    using Value = ColourChannels<3 * R>;
+    const ColourSpecularSky* self;
+    void weighted(const Vec3& w, double cos_theta, double k, Value& out) const {
+      double l[3 * R];
+      self->grid_.template lookup_n<3 * R>(w, l);
+      double u[FresnelFactors::kMaxRank] = {1.0, 1.0, 1.0, 1.0};
+      if (self->factors_) self->factors_->u(cos_theta, u);
+      for (int c = 0; c < 3; ++c)
+        for (int j = 0; j < R; ++j) out.v[c * R + j] = k * u[j] * l[c * R + j];
+    }
+    double eval(const Vec3& w, double v_dot_h, double k, Value& out) const {
+      weighted(w, v_dot_h, k, out);
+      double y = 0;  // the luminance channel: Σ_j of component Y
+      for (int j = 0; j < R; ++j) y += out.v[R + j];
+      return std::max(y, 0.0);
+    }
+    void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const { weighted(q, n_dot_v, weight, out); }
+  };
+
+ private:
+  template <int R>
+  Xyz integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                const SpecularSkyOptions& opt, SpecularSkyStats& stats) const;
+
+  const FresnelTable* fresnel_ = nullptr;
+  std::shared_ptr<const FresnelFactors> factors_;  // nullptr: F = 1
+  ProjectedSkyGrid grid_;
+  int rank_ = 1;
+};
+
+}  // namespace skyband
