@@ -163,8 +163,27 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
 
   const Vec3 sun_dir = sky.sun_direction.normalized();
   const Spectrum& e_dn = sky.sun_direct_normal;
-  SkyLutCache luts(sky.radiance);
   const SkyRadianceGrid grid(sky.radiance, settings.threads);
+  // Diffuse sky: per-band tables (seed eq. 1) built from the gridded sky, each also projected
+  // onto XYZ × the diffuse BRDF (1 − s)ρ_d/π of every diffuse material, so a sample's diffuse
+  // sky radiance integrates straight to XYZ (3 channels instead of 41).
+  std::vector<std::vector<Spectrum>> diffuse_projections;
+  std::vector<std::size_t> slot_diffuse(slot_materials.size(), 0);
+  {
+    std::vector<const Material*> seen;
+    for (std::size_t k = 0; k < slot_materials.size(); ++k) {
+      const Material* m = slot_materials[k];
+      std::size_t i = 0;
+      while (i < seen.size() && seen[i] != m) ++i;
+      if (i == seen.size()) {
+        seen.push_back(m);
+        const Spectrum brdf = m->diffuse_brdf();
+        diffuse_projections.push_back({xyz_weights(0) * brdf, xyz_weights(1) * brdf, xyz_weights(2) * brdf});
+      }
+      slot_diffuse[k] = i;
+    }
+  }
+  SkyLutCache luts([&grid](const Vec3& d, Spectrum& out) { grid(d, out); }, 360, 1e-9, diffuse_projections);
   // Specular sky in XYZ (specular_sky_colour.h): one projected sky per distinct Fresnel table.
   std::vector<std::unique_ptr<ColourSpecularSky>> specular_skies;
   std::vector<const ColourSpecularSky*> slot_specular(slot_materials.size(), nullptr);
@@ -200,8 +219,9 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
                           out.sun_specular = spectrum_to_linear_srgb(
                               sun_specular_radiance(m, ss.normal, sun_dir, ss.view_dir, e_dn, sun_vis, settings.paper_scale));
                           if (m.specular_weight < 1.0) {
-                            const Spectrum e_sky = diffuse_sky_irradiance(view, luts);
-                            out.sky_diffuse = spectrum_to_linear_srgb(m.diffuse_brdf() * e_sky);
+                            double xyz[3];
+                            diffuse_sky_channels(view, *luts.projected_for(view, slot_diffuse[ss.material_slot]), xyz);
+                            out.sky_diffuse = xyz_to_linear_srgb(Xyz{xyz[0], xyz[1], xyz[2]});
                           } else {
                             out.sky_diffuse = Vec3::Zero();
                           }

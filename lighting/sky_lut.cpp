@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include "geometry/input_error.h"
 #include "geometry/sky_integral.h"
@@ -47,7 +48,57 @@ void SkyLut::locate(double alpha_rad, int& node, double& t) const {
   t = std::min(x - node, 1.0);
 }
 
+void SkyLut::require_spectral() const {
+  if (channels_ != kSpectrumSamples) throw std::logic_error("SkyLut: spectral access to a projected table");
+}
+
+SkyLut SkyLut::project(std::span<const Spectrum> weights) const {
+  require_spectral();
+  SkyLut p;
+  p.lines_ = lines_;
+  p.cells_ = cells_;
+  p.channels_ = static_cast<int>(weights.size());
+  p.step_rad_ = step_rad_;
+  p.deltas_ = deltas_;
+  const std::size_t nodes = lines_ * static_cast<std::size_t>(cells_ + 1);
+  p.table_.assign(nodes * weights.size(), 0.0);
+  for (std::size_t n = 0; n < nodes; ++n) {
+    const double* e = &table_[n * kSpectrumSamples];
+    for (std::size_t k = 0; k < weights.size(); ++k) {
+      double sum = 0;
+      for (int i = 0; i < kSpectrumSamples; ++i) sum += weights[k][i] * e[i];
+      p.table_[n * weights.size() + k] = sum;
+    }
+  }
+  return p;
+}
+
+void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const {
+  int j0, j1;
+  double t0, t1;
+  locate(alpha0_rad, j0, t0);
+  locate(alpha1_rad, j1, t1);
+  const std::size_t c = static_cast<std::size_t>(channels_);
+  const double* a0 = row(line, j0);
+  const double* b0 = a0 + c;
+  const double* a1 = row(line, j1);
+  const double* b1 = a1 + c;
+  for (std::size_t i = 0; i < c; ++i)
+    acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+}
+
+void diffuse_sky_channels(const PointVisibilityView& v, const SkyLut& lut, double* out) {
+  for (int k = 0; k < lut.channels(); ++k) out[k] = 0.0;
+  const std::size_t n = std::min(v.band_count(), lut.line_count());
+  for (std::size_t b = 0; b < n; ++b) {
+    const double w = v.band_weight(b);
+    for (const VisibleInterval& iv : v.visible(b))
+      lut.add_interval(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, out);
+  }
+}
+
 void SkyLut::primitive(std::size_t line, double alpha_rad, Spectrum& out) const {
+  require_spectral();
   int j;
   double t;
   locate(alpha_rad, j, t);
@@ -57,16 +108,8 @@ void SkyLut::primitive(std::size_t line, double alpha_rad, Spectrum& out) const 
 }
 
 void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, Spectrum& acc) const {
-  int j0, j1;
-  double t0, t1;
-  locate(alpha0_rad, j0, t0);
-  locate(alpha1_rad, j1, t1);
-  const double* a0 = row(line, j0);
-  const double* b0 = a0 + kSpectrumSamples;
-  const double* a1 = row(line, j1);
-  const double* b1 = a1 + kSpectrumSamples;
-  for (int i = 0; i < kSpectrumSamples; ++i)
-    acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+  require_spectral();
+  add_interval(line, alpha0_rad, alpha1_rad, weight, acc.v.data());
 }
 
 Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut) {
@@ -80,13 +123,20 @@ Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut)
   return e;
 }
 
-SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum)
-    : sky_(std::move(sky)), alpha_cells_(alpha_cells), quantum_(frame_quantum) {
+SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum,
+                         std::vector<std::vector<Spectrum>> projections)
+    : sky_(std::move(sky)), alpha_cells_(alpha_cells), quantum_(frame_quantum), projections_(std::move(projections)) {
   if (!(frame_quantum > 0)) throw InputError("sky look-up table cache: frame quantum must be > 0, got " + std::to_string(frame_quantum));
   if (alpha_cells < 1) throw InputError("sky look-up table cache: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
 }
 
-std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) {
+std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) { return entry_for(v)->lut; }
+
+std::shared_ptr<const SkyLut> SkyLutCache::projected_for(const PointVisibilityView& v, std::size_t k) {
+  return entry_for(v)->projected.at(k);
+}
+
+std::shared_ptr<const SkyLutCache::Entry> SkyLutCache::entry_for(const PointVisibilityView& v) {
   const BandFrame& f = v.frame();
   std::int64_t q[6];
   for (int i = 0; i < 3; ++i) {
@@ -115,8 +165,8 @@ std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v)
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = map_.find(hash);
     if (it != map_.end())
-      for (const Entry& e : it->second)
-        if (matches(e)) return e.lut;
+      for (const auto& e : it->second)
+        if (matches(*e)) return e;
   }
   // Build outside the lock (other threads keep shading); the first insert wins.
   Entry e;
@@ -128,13 +178,14 @@ std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v)
     deltas[b] = v.band(b).delta_rad;
   }
   e.lut = std::make_shared<const SkyLut>(f, deltas, sky_, alpha_cells_);
+  for (const std::vector<Spectrum>& w : projections_) e.projected.push_back(std::make_shared<const SkyLut>(e.lut->project(w)));
   std::lock_guard<std::mutex> lock(mutex_);
   auto& bucket = map_[hash];
-  for (const Entry& other : bucket)
-    if (matches(other)) return other.lut;
-  bucket.push_back(std::move(e));
+  for (const auto& other : bucket)
+    if (matches(*other)) return other;
+  bucket.push_back(std::make_shared<const Entry>(std::move(e)));
   ++count_;
-  return bucket.back().lut;
+  return bucket.back();
 }
 
 std::size_t SkyLutCache::size() const {

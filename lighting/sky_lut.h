@@ -41,36 +41,57 @@ class SkyLut {
   std::size_t line_count() const { return lines_; }
   int alpha_cells() const { return cells_; }
   double line_delta_rad(std::size_t line) const { return deltas_[line]; }
+  // Values per node: kSpectrumSamples for a spectral table, the weight count for a projected one.
+  int channels() const { return channels_; }
 
-  // out = E_l(α) (α clamped to [0, π]).
+  // The table of the linear functionals P_k[E_l] = Σ_i w_k(λ_i)·E_l(λ_i), one channel per
+  // weight spectrum (e.g. CIE XYZ weights times an albedo: the table then integrates straight to
+  // a colour). Exact: projection commutes with the quadrature and the interpolation. Spectral
+  // tables only (else std::logic_error).
+  SkyLut project(std::span<const Spectrum> weights) const;
+
+  // Spectral tables only (else std::logic_error): out = E_l(α) (α clamped to [0, π]).
   void primitive(std::size_t line, double alpha_rad, Spectrum& out) const;
   // acc += weight·(E_l(α1) − E_l(α0)).
   void add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, Spectrum& acc) const;
+  // Any table: acc[k] += weight·(E_l(α1) − E_l(α0))[k], k < channels().
+  void add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const;
 
  private:
+  SkyLut() = default;
   const double* row(std::size_t line, int node) const {
-    return &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(node)) * kSpectrumSamples];
+    return &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(node)) *
+                   static_cast<std::size_t>(channels_)];
   }
   void locate(double alpha_rad, int& node, double& t) const;
+  void require_spectral() const;
 
   std::size_t lines_ = 0;
   int cells_ = 0;
+  int channels_ = kSpectrumSamples;
   double step_rad_ = 0;
   std::vector<double> deltas_;
-  std::vector<double> table_;  // [line][node 0..cells][wavelength]
+  std::vector<double> table_;  // [line][node 0..cells][channel]
 };
 
 // E(λ) of one cached point from a table built for its frame and bands (W·m⁻²·nm⁻¹).
 Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut);
+// The same through any table: out[k] = Σ_b w_b Σ_visible [E_b(α1) − E_b(α0)][k], k < channels().
+void diffuse_sky_channels(const PointVisibilityView& v, const SkyLut& lut, double* out);
 
 // Tables of one sky, built on first use per (quantised frame, band layout). Thread-safe.
 class SkyLutCache {
  public:
   // `frame_quantum`: components of the frame's normal and axis are rounded to this before keying
   // (frames closer than this share a table; the error this adds is of the same order).
-  explicit SkyLutCache(SkyRadianceFn sky, int alpha_cells = 360, double frame_quantum = 1e-9);
+  // `projections`: weight sets; with each spectral table the cache also keeps its projection by
+  // every set (SkyLut::project), served by projected_for.
+  explicit SkyLutCache(SkyRadianceFn sky, int alpha_cells = 360, double frame_quantum = 1e-9,
+                       std::vector<std::vector<Spectrum>> projections = {});
 
   std::shared_ptr<const SkyLut> lut_for(const PointVisibilityView& v);
+  // The table of v's frame and bands projected by weight set k.
+  std::shared_ptr<const SkyLut> projected_for(const PointVisibilityView& v, std::size_t k);
   std::size_t size() const;
 
  private:
@@ -78,12 +99,16 @@ class SkyLutCache {
     std::int64_t q[6];
     std::vector<float> deltas;
     std::shared_ptr<const SkyLut> lut;
+    std::vector<std::shared_ptr<const SkyLut>> projected;
   };
+  std::shared_ptr<const Entry> entry_for(const PointVisibilityView& v);
+
   SkyRadianceFn sky_;
   int alpha_cells_;
   double quantum_;
+  std::vector<std::vector<Spectrum>> projections_;
   mutable std::mutex mutex_;
-  std::unordered_map<std::uint64_t, std::vector<Entry>> map_;
+  std::unordered_map<std::uint64_t, std::vector<std::shared_ptr<const Entry>>> map_;
   std::size_t count_ = 0;
 };
 

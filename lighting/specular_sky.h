@@ -33,7 +33,8 @@
 //     code), and lines are integrated only inside it, so merging is exact for what is integrated. A segment at most c₁·m wide in δ (single_line_per_m) is one line (a single band:
 //     its own sample plane and weight w_b, seed eq. 7; the midpoint rule's error (h/σ)²/24 is
 //     ≤ 10⁻³); a wider one is split into pieces of equal δ width ≤ c_δ·m (or max_delta_step_rad)
-//     with three Gauss–Legendre lines each (weights (h/2)·w_k·cos(δ − β)), the rule used along α.
+//     with three Gauss–Legendre lines each (weights (h/2)·w_k·cos(δ − β)), the rule used along α,
+//     or two when the pieces are at most ⅔ of that width.
 //     Merging matters: equal-weight bands crowd around the normal (a wall has 64 bands in
 //     90° of δ, the first ones 0.9° wide), so band by band a lobe of m = 0.1 meets ~50 bands.
 //  5. m below mirror_below_m: a perfect mirror, I = w_s F(N·V) L(Q) if Q is visible (the band
@@ -116,6 +117,7 @@ struct Segment {
   std::size_t b0 = 0, b1 = 0;
   double d0_rad = 0, d1_rad = 0;
   int count = 1;  // lines
+  int nodes = 1;  // Gauss–Legendre lines per piece (count = nodes × pieces; 1 = one line in all)
 };
 // Whether bands a and b have the same visible intervals within [lo, hi] (radians).
 bool same_visibility(const PointVisibilityView& v, std::size_t a, std::size_t b, double lo, double hi);
@@ -138,6 +140,9 @@ bool alpha_visible(std::span<const VisibleInterval> visible, double alpha_rad);
 bool make_context(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, PointContext& c);
 
 // 3-point Gauss–Legendre on [−1, 1].
+// 2-point Gauss–Legendre on [−1, 1].
+inline constexpr double kGl2X[2] = {-0.5773502691896258, 0.5773502691896258};
+inline constexpr double kGl2W[2] = {1.0, 1.0};
 inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
 inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
 

@@ -138,6 +138,43 @@ BOOST_AUTO_TEST_CASE(occluded_coloured_sky_matches_direct_quadrature) {
   }
 }
 
+// Projected tables (SkyLut::project, SkyLutCache projections): integrating the projected table
+// equals projecting the integrated spectrum (both are the same linear map applied in another
+// order; rounding only, 1e-12), and spectral access to a projected table is refused.
+Spectrum coloured_weights() {
+  Spectrum w;
+  for (int i = 0; i < kSpectrumSamples; ++i) w[i] = 0.2 + 0.01 * i * (i % 3);
+  return w;
+}
+
+BOOST_AUTO_TEST_CASE(projected_tables_commute_with_integration) {
+  auto occlusion = [](int band, double) {
+    std::vector<std::pair<double, double>> iv;
+    if (band % 4 == 1) return iv;
+    iv.push_back({0.2, 1.3});
+    iv.push_back({1.9, kPi});
+    return iv;
+  };
+  const std::vector<Spectrum> w = {Spectrum::constant(1.0), coloured_weights()};
+  SkyLutCache cache(coloured_sky, 360, 1e-9, {w});
+  for (const Vec3& n : kNormals) {
+    const VisibilityCache vc = single_point_cache(n, 24, occlusion);
+    const Spectrum e = diffuse_sky_irradiance(vc.view(0), cache);
+    const auto projected = cache.projected_for(vc.view(0), 0);
+    BOOST_TEST(projected->channels() == 2);
+    double out[2];
+    diffuse_sky_channels(vc.view(0), *projected, out);
+    for (int k = 0; k < 2; ++k) {
+      double expect = 0;
+      for (int i = 0; i < kSpectrumSamples; ++i) expect += w[static_cast<std::size_t>(k)][i] * e[i];
+      BOOST_TEST(out[k] == expect, tt::tolerance(1e-12));
+    }
+    Spectrum s;
+    BOOST_CHECK_THROW(projected->primitive(0, 1.0, s), std::logic_error);
+    BOOST_CHECK_THROW(cache.projected_for(vc.view(0), 1), std::out_of_range);
+  }
+}
+
 // The cache: same frame + layout → same table; different normal or band count → new table; the
 // result is independent of which thread built it (concurrent lookups return one shared table).
 BOOST_AUTO_TEST_CASE(cache_keys_and_threads) {
