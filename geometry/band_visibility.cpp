@@ -76,10 +76,22 @@ BandRule band_rule(double d0, double d1, double beta) {
   return r;
 }
 
+// First span of a sorted merged list with hi ≥ x (short lists scanned linearly: faster there).
+inline std::vector<Span>::iterator first_reaching(std::vector<Span>& v, double x) {
+  if (v.size() <= 16) {
+    auto it = v.begin();
+    while (it != v.end() && it->hi < x) ++it;
+    return it;
+  }
+  return std::lower_bound(v.begin(), v.end(), x, [](const Span& s, double y) { return s.hi < y; });
+}
+
 // Inserts [lo, hi] into a sorted merged list (touching intervals merge: shared end points of
-// triangles sharing an edge are bit-identical, so a closed surface leaves no gap).
-void insert_span(std::vector<Span>& v, double lo, double hi) {
-  auto first = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
+// triangles sharing an edge are bit-identical, so a closed surface leaves no gap). Returns false,
+// leaving the list unchanged, when [lo, hi] already lies inside one span.
+bool insert_span(std::vector<Span>& v, double lo, double hi) {
+  auto first = first_reaching(v, lo);
+  if (first != v.end() && first->lo <= lo && first->hi >= hi) return false;
   auto last = first;
   while (last != v.end() && last->lo <= hi) {
     lo = std::min(lo, last->lo);
@@ -92,6 +104,7 @@ void insert_span(std::vector<Span>& v, double lo, double hi) {
     *first = Span{lo, hi};
     v.erase(first + 1, last);
   }
+  return true;
 }
 
 // Is [lo, hi] inside one occluded span? The hottest test of the traversal (per node and plane,
@@ -122,6 +135,13 @@ struct BandVisibility::Impl {
   std::vector<Plane> planes;
   std::size_t plane_count = 0;
   std::vector<int> active;            // indices of the planes of this pass, sorted by pdelta
+  // The same planes, contiguous in that order with what the per-(triangle, plane) loop reads.
+  struct ActivePlane {
+    Vec3 m;
+    double cosd, sind;
+    std::vector<Span>* occluded;
+  };
+  std::vector<ActivePlane> act;
   std::vector<double> active_keys;    // their pdelta
   std::vector<std::uint32_t> stack;
   // Pencil pseudo-angles of triangle edges (nearly) parallel to the axis that changed some
@@ -135,8 +155,34 @@ struct BandVisibility::Impl {
     tail_p = pseudo_angle(std::cos(opt.axis_tail_rad), std::sin(opt.axis_tail_rad));
   }
 
+  // Per-orientation memo: the frame, the initial bands and the planes' trigonometry depend only
+  // on the normal, and neighbouring points (a facade, a street, a rendered wall) share it. Reused
+  // only on bit-identical normals and (s, δ), so results are the same as without the memo.
+  struct PlaneGeometry {
+    double s, delta, pdelta, cosd, sind;
+    Vec3 m;
+  };
+  bool memo_valid = false;
+  Vec3 memo_normal;
+  BandFrame memo_frame;
+  std::vector<PlaneGeometry> memo_planes;  // the planes of the last point(s), in creation order
+  std::vector<Band> memo_initial;          // equal_weight_bands(frame, opt.bands)
+  std::vector<BandState> memo_states;      // their δ-edges (refinement)
+  std::vector<double> memo_centre_delta;   // δ of their weight medians (fixed bands)
+  bool memo_states_ready = false;
+
   void begin_point(const QueryPoint& q) {
-    frame = BandFrame::make(q.normal);
+    if (!(memo_valid && q.normal == memo_normal)) {
+      memo_frame = BandFrame::make(q.normal);
+      memo_normal = q.normal;
+      memo_valid = true;
+      memo_planes.clear();
+      memo_initial = equal_weight_bands(memo_frame, opt.bands);
+      memo_states.clear();
+      memo_states_ready = false;
+      memo_centre_delta.clear();
+    }
+    frame = memo_frame;
     p = q.position + opt.surface_offset_m * frame.normal;
     local_from_world.row(0) = frame.x.transpose();
     local_from_world.row(1) = frame.h.transpose();
@@ -151,10 +197,20 @@ struct BandVisibility::Impl {
     Plane& pl = planes[plane_count];
     pl.s = s;
     pl.delta = delta;
-    pl.cosd = std::cos(delta);
-    pl.sind = std::sin(delta);
-    pl.pdelta = pseudo_angle(pl.cosd, pl.sind);
-    pl.m = -pl.sind * frame.h + pl.cosd * frame.z;
+    if (plane_count < memo_planes.size() && memo_planes[plane_count].s == s && memo_planes[plane_count].delta == delta) {
+      const PlaneGeometry& g = memo_planes[plane_count];
+      pl.cosd = g.cosd;
+      pl.sind = g.sind;
+      pl.pdelta = g.pdelta;
+      pl.m = g.m;
+    } else {
+      pl.cosd = std::cos(delta);
+      pl.sind = std::sin(delta);
+      pl.pdelta = pseudo_angle(pl.cosd, pl.sind);
+      pl.m = -pl.sind * frame.h + pl.cosd * frame.z;
+      if (plane_count < memo_planes.size()) memo_planes.resize(plane_count);
+      if (plane_count == memo_planes.size()) memo_planes.push_back({s, delta, pl.pdelta, pl.cosd, pl.sind, pl.m});
+    }
     pl.occluded.clear();
     pl.line_integral = 0;
     return static_cast<int>(plane_count++);
@@ -166,7 +222,11 @@ struct BandVisibility::Impl {
     for (std::size_t i = first; i < plane_count; ++i) active.push_back(static_cast<int>(i));
     std::sort(active.begin(), active.end(), [&](int a, int b) { return planes[a].pdelta < planes[b].pdelta; });
     active_keys.clear();
-    for (int i : active) active_keys.push_back(planes[i].pdelta);
+    act.clear();
+    for (int i : active) {
+      active_keys.push_back(planes[i].pdelta);
+      act.push_back(ActivePlane{planes[i].m, planes[i].cosd, planes[i].sind, &planes[i].occluded});
+    }
     total_planes += active.size();
     if (opt.accelerate) {
       traverse();
@@ -247,7 +307,7 @@ struct BandVisibility::Impl {
       double alo, ahi;
       if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi)) continue;  // only in the axis tails
       bool all_covered = true;
-      for (int j = j0; j < j1 && all_covered; ++j) all_covered = covered(planes[active[j]].occluded, alo, ahi);
+      for (int j = j0; j < j1 && all_covered; ++j) all_covered = covered(*act[j].occluded, alo, ahi);
       if (all_covered) continue;
       if (node.count > 0) {
         const auto& order = scene.bvh_triangle_order();
@@ -298,8 +358,9 @@ struct BandVisibility::Impl {
     bool contributed = false;
     bool edge_on_checked = false;
     for (int j = k0; j < k1; ++j) {
-      Plane& pl = planes[active[j]];
-      if (covered(pl.occluded, alo, ahi)) continue;  // already hidden on this line (front-to-back)
+      const ActivePlane& pl = act[j];
+      std::vector<Span>& occluded = *pl.occluded;
+      if (covered(occluded, alo, ahi)) continue;  // already hidden on this line (front-to-back)
       if (!edge_on_checked) {
         // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of
         // measure zero (this is also what keeps a face from hiding the sky above itself).
@@ -337,7 +398,7 @@ struct BandVisibility::Impl {
         ++n;
       }
       if (n < 2) continue;
-      contributed |= add_segment(pl, ea[0], eb[0], ea[1], eb[1]);
+      contributed |= add_segment(occluded, ea[0], eb[0], ea[1], eb[1]);
     }
     if (contributed && breakpoint_span > 0) {
       for (int k = 0; k < 3; ++k) {
@@ -354,7 +415,7 @@ struct BandVisibility::Impl {
   }
 
   // The in-plane segment (a, b) → occluded pseudo-angle span, clipped to the sky side b ≥ 0.
-  static bool add_segment(Plane& pl, double a0, double b0, double a1, double b1) {
+  static bool add_segment(std::vector<Span>& occluded, double a0, double b0, double a1, double b1) {
     if (b0 <= 0 && b1 <= 0) return false;
     double p0, p1;
     if (b0 < 0 || b1 < 0) {
@@ -376,9 +437,7 @@ struct BandVisibility::Impl {
       p1 = pseudo_angle(a1, b1);
     }
     const double lo = std::min(p0, p1), hi = std::max(p0, p1);
-    if (!(hi > lo) || covered(pl.occluded, lo, hi)) return false;
-    insert_span(pl.occluded, lo, hi);
-    return true;
+    return hi > lo && insert_span(occluded, lo, hi);
   }
 
   static void finish_plane(Plane& pl) {
@@ -442,21 +501,29 @@ struct BandVisibility::Impl {
     out.normal = q.normal;
     out.bands.clear();
     out.intervals.clear();
-    const std::vector<Band> initial = equal_weight_bands(frame, opt.bands);
+    const std::vector<Band>& initial = memo_initial;
     if (initial.empty()) return;
     const bool refine = opt.tolerance > 0;
-    std::vector<BandState> bands;
-    bands.reserve(initial.size() * 2);
-    for (const Band& b : initial) bands.push_back(BandState{frame.delta_at(b.s0), frame.delta_at(b.s1), -1, -1, -1});
-    bands.front().d0 = frame.delta_min_rad;
-    bands.back().d1 = frame.delta_max_rad;
     if (!refine) {
       // The paper's bands: one sample plane at each band's weight median (seed eq. 1, d_l = 1/N).
-      for (std::size_t i = 0; i < bands.size(); ++i) bands[i].c = add_plane(initial[i].s_centre(), frame.delta_at(initial[i].s_centre()));
+      const std::size_t first_plane = plane_count;
+      if (memo_centre_delta.empty())
+        for (const Band& b : initial) memo_centre_delta.push_back(frame.delta_at(b.s_centre()));
+      for (std::size_t i = 0; i < initial.size(); ++i) add_plane(initial[i].s_centre(), memo_centre_delta[i]);
       run_pass(0);
-      for (std::size_t i = 0; i < bands.size(); ++i) emit_record(out, initial[i].s0, initial[i].s1, bands[i].c);
+      for (std::size_t i = 0; i < initial.size(); ++i)
+        emit_record(out, initial[i].s0, initial[i].s1, static_cast<int>(first_plane + i));
       return;
     }
+    if (!memo_states_ready) {
+      for (const Band& b : initial) memo_states.push_back(BandState{frame.delta_at(b.s0), frame.delta_at(b.s1), -1, -1, -1});
+      memo_states.front().d0 = frame.delta_min_rad;
+      memo_states.back().d1 = frame.delta_max_rad;
+      memo_states_ready = true;
+    }
+    std::vector<BandState> bands;
+    bands.reserve(initial.size() * 2);
+    bands.assign(memo_states.begin(), memo_states.end());
     // The outermost edge lines are sampled just inside the face's sky: exactly at δ_min/δ_max lie
     // the horizon plane and the face's own plane, where coplanar ground or neighbouring walls
     // give f a value that is the limit of neither side.
