@@ -33,6 +33,7 @@ struct Plane {
   Vec3 m;                  // plane normal −sin δ·h + cos δ·z (world frame, rounded once: *the* plane)
   std::vector<Span> occluded;  // sorted, disjoint, merged
   double line_integral = 0;    // ∫_visible sin²α dα (uniform sky, for refinement)
+  std::vector<VisibleInterval> visible;  // the cache's intervals of this line (finish_plane)
 };
 
 // A band of the refined partition, in δ (radians). With refinement, its lines are the two edges
@@ -120,6 +121,12 @@ bool covered(const std::vector<Span>& v, double lo, double hi) {
   return it != v.end() && it->lo <= lo && it->hi >= hi;
 }
 
+}  // namespace
+
+namespace {
+// A leaf whose plane range holds at most this many planes hands its plane and α-ranges to its
+// triangles instead of each computing its own (paper building, N = 64: ~5 % faster).
+constexpr int kLeafOwnRanges = 4;
 }  // namespace
 
 struct BandVisibility::Impl {
@@ -239,10 +246,12 @@ struct BandVisibility::Impl {
 
   // Range [j0, j1) of active planes whose pseudo-angle lies in [plo, phi] (widened by a margin far
   // larger than the rounding of either side, so the range is a superset; exact predicates decide).
-  void plane_range(double plo, double phi, int& j0, int& j1) const {
+  // Searched within [lo, hi) of the active planes (the range of the enclosing node).
+  void plane_range(double plo, double phi, int lo, int hi, int& j0, int& j1) const {
     constexpr double kMargin = 1e-9;
-    j0 = static_cast<int>(std::lower_bound(active_keys.begin(), active_keys.end(), plo - kMargin) - active_keys.begin());
-    j1 = static_cast<int>(std::upper_bound(active_keys.begin(), active_keys.end(), phi + kMargin) - active_keys.begin());
+    const double* keys = active_keys.data();
+    j0 = static_cast<int>(std::lower_bound(keys + lo, keys + hi, plo - kMargin) - keys);
+    j1 = static_cast<int>(std::upper_bound(keys + j0, keys + hi, phi + kMargin) - keys);
   }
 
   // Conservative pseudo-angle span in the (h, z) plane of an axis-aligned local rectangle,
@@ -302,7 +311,7 @@ struct BandVisibility::Impl {
       double plo, phi;
       if (!pencil_span(lh_lo, lh_hi, lz_lo, lz_hi, plo, phi)) continue;
       int j0, j1;
-      plane_range(plo, phi, j0, j1);
+      plane_range(plo, phi, 0, static_cast<int>(active_keys.size()), j0, j1);
       if (j0 >= j1) continue;
       double alo, ahi;
       if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi)) continue;  // only in the axis tails
@@ -311,7 +320,11 @@ struct BandVisibility::Impl {
       if (all_covered) continue;
       if (node.count > 0) {
         const auto& order = scene.bvh_triangle_order();
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1);
+        // A leaf reaching few planes hands its ranges down: cheaper than each triangle's own.
+        // Not where the leaf's α-range was cut by an axis tail: whether a triangle lies wholly
+        // in a tail is decided on its own range, so the result does not depend on the BVH.
+        const bool own = j1 - j0 > kLeafOwnRanges || alo == tail_p || ahi == 2.0 - tail_p;
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1, own, alo, ahi);
       } else {
         const std::uint32_t l = node.first, r = node.first + 1;
         const double dl = (nodes[l].box.centre() - p).squaredNorm();
@@ -327,7 +340,9 @@ struct BandVisibility::Impl {
     }
   }
 
-  void process_triangle(std::uint32_t t, int j0, int j1) {
+  // own_ranges = false: use the enclosing leaf's plane range [j0, j1) and α-range [alo, ahi]
+  // (conservative for its triangles) instead of the triangle's own, tighter ones.
+  void process_triangle(std::uint32_t t, int j0, int j1, bool own_ranges = true, double leaf_alo = 0, double leaf_ahi = 2) {
     const auto& soup = scene.soup();
     const auto& tri = soup.triangles[t];
     const Vec3& v0 = soup.vertices[tri[0]];
@@ -340,20 +355,20 @@ struct BandVisibility::Impl {
     const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
     Vec3 L[3];
     for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
-    double plo, phi;
-    auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
-    auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
-    const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
-    const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
-    if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
-    double alo, ahi;
-    const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
-    if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi)) return;
-    int k0, k1;
-    plane_range(plo, phi, k0, k1);
-    k0 = std::max(k0, j0);
-    k1 = std::min(k1, j1);
-    if (k0 >= k1) return;
+    double alo = leaf_alo, ahi = leaf_ahi;
+    int k0 = j0, k1 = j1;
+    if (own_ranges) {
+      double plo, phi;
+      auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
+      auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
+      const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
+      const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
+      if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
+      const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
+      if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi)) return;
+      plane_range(plo, phi, j0, j1, k0, k1);
+      if (k0 >= k1) return;
+    }
     const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
     bool contributed = false;
     bool edge_on_checked = false;
@@ -440,28 +455,29 @@ struct BandVisibility::Impl {
     return hi > lo && insert_span(occluded, lo, hi);
   }
 
+  // The line's visible α-intervals in radians (the gaps between occluded spans, each end
+  // converted once) and their uniform-sky integral ∫_visible sin²α dα.
   static void finish_plane(Plane& pl) {
     double f = 0, prev = 0;
+    pl.visible.clear();
+    // f integrates up to π itself at the far end (not to angle_of_pseudo(2)).
+    auto gap = [&](double lo, double hi, bool last) {
+      const double lo_rad = angle_of_pseudo(lo), hi_rad = angle_of_pseudo(hi);
+      f += uniform_sky_primitive(last ? kPi : hi_rad) - uniform_sky_primitive(lo_rad);
+      const float a0 = static_cast<float>(lo_rad);
+      const float a1 = static_cast<float>(hi_rad);
+      if (a1 > a0) pl.visible.push_back({a0, a1});
+    };
     for (const Span& s : pl.occluded) {
-      if (s.lo > prev) f += uniform_sky_primitive(angle_of_pseudo(s.lo)) - uniform_sky_primitive(angle_of_pseudo(prev));
+      if (s.lo > prev) gap(prev, s.lo, false);
       prev = std::max(prev, s.hi);
     }
-    if (prev < 2) f += uniform_sky_primitive(kPi) - uniform_sky_primitive(angle_of_pseudo(prev));
+    if (prev < 2) gap(prev, 2, true);
     pl.line_integral = f;
   }
 
   void visible_intervals(const Plane& pl, std::vector<VisibleInterval>& out) const {
-    double prev = 0;
-    auto emit = [&](double lo, double hi) {
-      const float a0 = static_cast<float>(angle_of_pseudo(lo));
-      const float a1 = static_cast<float>(angle_of_pseudo(hi));
-      if (a1 > a0) out.push_back({a0, a1});
-    };
-    for (const Span& s : pl.occluded) {
-      if (s.lo > prev) emit(prev, s.lo);
-      prev = std::max(prev, s.hi);
-    }
-    if (prev < 2) emit(prev, 2);
+    out.insert(out.end(), pl.visible.begin(), pl.visible.end());
   }
 
   static double pseudo_of_delta(double d) { return pseudo_angle(std::cos(d), std::sin(d)); }
