@@ -149,6 +149,18 @@ struct BandVisibility::Impl {
     std::vector<Span>* occluded;
   };
   std::vector<ActivePlane> act;
+  // Node occlusion test over many planes: consecutive active planes in blocks of kBlock, each
+  // with the intersection of their occluded lists (recomputed lazily after an insertion). An
+  // α-range lies inside an occluded span on every plane of the block exactly when it lies inside
+  // one span of the intersection (the intersection of unions of intervals is a union of
+  // intervals, and a connected range inside it lies in one component).
+  static constexpr int kBlock = 8;
+  struct Block {
+    std::vector<Span> common;
+    bool dirty = true;
+  };
+  std::vector<Block> blocks;
+  std::vector<Span> scratch;
   std::vector<double> active_keys;    // their pdelta
   std::vector<std::uint32_t> stack;
   // Pencil pseudo-angles of triangle edges (nearly) parallel to the axis that changed some
@@ -230,6 +242,8 @@ struct BandVisibility::Impl {
     std::sort(active.begin(), active.end(), [&](int a, int b) { return planes[a].pdelta < planes[b].pdelta; });
     active_keys.clear();
     act.clear();
+    blocks.resize((plane_count - first + kBlock - 1) / kBlock);
+    for (Block& b : blocks) b.dirty = true;
     for (int i : active) {
       active_keys.push_back(planes[i].pdelta);
       act.push_back(ActivePlane{planes[i].m, planes[i].cosd, planes[i].sind, &planes[i].occluded});
@@ -290,6 +304,41 @@ struct BandVisibility::Impl {
     return alo < ahi;
   }
 
+  // Intersection of the occluded lists of active planes [j, j + kBlock) into b.common.
+  void intersect_block(Block& b, int j) {
+    b.common = *act[j].occluded;
+    for (int k = j + 1; k < j + kBlock && !b.common.empty(); ++k) {
+      const std::vector<Span>& v = *act[k].occluded;
+      scratch.clear();
+      std::size_t x = 0, y = 0;
+      while (x < b.common.size() && y < v.size()) {
+        const double lo = std::max(b.common[x].lo, v[y].lo), hi = std::min(b.common[x].hi, v[y].hi);
+        if (lo <= hi) scratch.push_back(Span{lo, hi});
+        if (b.common[x].hi < v[y].hi) ++x; else ++y;
+      }
+      b.common.swap(scratch);
+    }
+    b.dirty = false;
+  }
+
+  // Is [alo, ahi] inside an occluded span on every active plane of [j0, j1)? The first plane is
+  // tried alone (most nodes fail there); then whole blocks use their intersections.
+  bool covered_on_all(int j0, int j1, double alo, double ahi) {
+    if (!covered(*act[j0].occluded, alo, ahi)) return false;
+    for (int j = j0 + 1; j < j1;) {
+      if (j % kBlock == 0 && j + kBlock <= j1) {
+        Block& b = blocks[j / kBlock];
+        if (b.dirty) intersect_block(b, j);
+        if (!covered(b.common, alo, ahi)) return false;
+        j += kBlock;
+      } else {
+        if (!covered(*act[j].occluded, alo, ahi)) return false;
+        ++j;
+      }
+    }
+    return true;
+  }
+
   void traverse() {
     const auto& nodes = scene.bvh_nodes();
     if (nodes.empty() || active.empty()) return;
@@ -315,9 +364,7 @@ struct BandVisibility::Impl {
       if (j0 >= j1) continue;
       double alo, ahi;
       if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi)) continue;  // only in the axis tails
-      bool all_covered = true;
-      for (int j = j0; j < j1 && all_covered; ++j) all_covered = covered(*act[j].occluded, alo, ahi);
-      if (all_covered) continue;
+      if (covered_on_all(j0, j1, alo, ahi)) continue;
       if (node.count > 0) {
         const auto& order = scene.bvh_triangle_order();
         // A leaf reaching few planes hands its ranges down: cheaper than each triangle's own.
@@ -413,7 +460,10 @@ struct BandVisibility::Impl {
         ++n;
       }
       if (n < 2) continue;
-      contributed |= add_segment(occluded, ea[0], eb[0], ea[1], eb[1]);
+      if (add_segment(occluded, ea[0], eb[0], ea[1], eb[1])) {
+        contributed = true;
+        blocks[j / kBlock].dirty = true;
+      }
     }
     if (contributed && breakpoint_span > 0) {
       for (int k = 0; k < 3; ++k) {
