@@ -44,6 +44,7 @@ struct BandState {
   double error = 0;  // estimated error of the band's midpoint value, SVF units
   int depth = 0;
   bool from_breakpoints = false;  // made by a breakpoint split: the next split bisects
+  double cached_error = -1;       // band_error() once computed (its lines never change), else −1
 };
 
 // Weights (w0, wm, w1) of the interpolatory rule on nodes δ0, δm, δ1 for ∫_{δ0}^{δ1} g(δ) cos(δ − β) dδ
@@ -660,7 +661,10 @@ struct BandVisibility::Impl {
   void refine_bands(std::vector<BandState>& bands) {
     for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
       double total = 0;
-      for (BandState& b : bands) total += (b.error = band_error(b));
+      for (BandState& b : bands) {
+        if (b.cached_error < 0) b.cached_error = band_error(b);
+        total += (b.error = b.cached_error);
+      }
       if (total <= opt.tolerance) return;
       std::vector<int> order(bands.size());
       for (std::size_t i = 0; i < bands.size(); ++i) order[i] = static_cast<int>(i);
