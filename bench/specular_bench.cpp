@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   app.add_option("--single-line-per-m", opt.single_line_per_m)->capture_default_str();
   app.add_option("--max-alpha-step", opt.max_alpha_step_rad, "radians")->capture_default_str();
   app.add_option("--max-delta-step", opt.max_delta_step_rad, "radians")->capture_default_str();
-  app.add_option("--grazing-floor", opt.grazing_floor)->capture_default_str();
+  app.add_option("--min-compression", opt.min_compression)->capture_default_str();
   app.add_option("--m", roughness, "Beckmann roughness values")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   const ClearSky sky;

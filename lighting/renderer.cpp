@@ -14,6 +14,7 @@
 #include "lighting/colour.h"
 #include "lighting/sky_lut.h"
 #include "lighting/sky_radiance_grid.h"
+#include "lighting/specular_reuse.h"
 #include "lighting/specular_sky_colour.h"
 #include "lighting/sun_shading.h"
 
@@ -225,19 +226,32 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
                           } else {
                             out.sky_diffuse = Vec3::Zero();
                           }
-                          if (m.has_specular()) {
-                            out.sky_specular = xyz_to_linear_srgb(slot_specular[ss.material_slot]->radiance_xyz(
-                                view, ss.view_dir, m.specular_lobe(settings.paper_scale), settings.specular));
-                          } else {
-                            out.sky_specular = Vec3::Zero();
-                          }
+                          out.sky_specular = Vec3::Zero();
                         }
                       });
   });
+  // Specular sky: the ε-march, exactly at block corners and wherever the image is not flat.
+  std::vector<Xyz> specular_xyz(pass.surfaces.size());
+  const auto material_of = [&](std::size_t k) -> const Material& { return *slot_materials[pass.surfaces[k].material_slot]; };
+  const SpecularReuseStats reuse = shade_specular_with_reuse(
+      pass, settings.specular_reuse_block, settings.specular_reuse_tolerance,
+      [&](std::size_t k) { return material_of(k).has_specular(); },
+      [&](std::size_t k) { return material_of(k).roughness_m >= settings.specular_reuse_min_roughness; },
+      [&](std::size_t k) {
+        const SurfaceSample& ss = pass.surfaces[k];
+        return slot_specular[ss.material_slot]->radiance_xyz(pass.visibility.view(k), ss.view_dir,
+                                                             material_of(k).specular_lobe(settings.paper_scale),
+                                                             settings.specular);
+      },
+      settings.threads, specular_xyz);
+  for (std::size_t k = 0; k < pass.surfaces.size(); ++k)
+    if (material_of(k).has_specular()) shaded[k].sky_specular = xyz_to_linear_srgb(specular_xyz[k]);
 
   RenderLayers L;
   L.width = pass.width;
   L.height = pass.height;
+  L.specular_exact = reuse.exact;
+  L.specular_interpolated = reuse.interpolated;
   const std::size_t n_pixels = static_cast<std::size_t>(pass.width) * static_cast<std::size_t>(pass.height);
   for (auto* layer : {&L.sun_diffuse, &L.sun_specular, &L.sky_diffuse, &L.sky_specular, &L.total})
     layer->assign(n_pixels * 3, 0.0f);

@@ -47,6 +47,13 @@ struct RenderSettings {
   int samples_per_pixel = 1;       // anti-aliasing pattern of camera.h
   VisibilityOptions visibility;    // bands (N), adaptive tolerance (0 = fixed N), offsets
   SpecularSkyOptions specular;    // ε and steps of the partial-sky march (specular_sky.h)
+  // Image-space reuse of the specular sky term (specular_reuse.h): quadtree blocks of up to this
+  // many pixels, interpolated where the corners' bilinear interpolation predicts the marched
+  // centre within the tolerance (relative), for materials at least this rough. Block < 4 or
+  // tolerance 0: every sample exact.
+  int specular_reuse_block = 16;
+  double specular_reuse_tolerance = 0.01;
+  double specular_reuse_min_roughness = 0.05;
   bool paper_scale = false;        // Cook–Torrance 1982 scale (×4) instead of the microfacet form
   int threads = 0;                 // 0 = all cores
 };
@@ -86,6 +93,8 @@ struct RenderLayers {
   int width = 0, height = 0;
   // Linear sRGB, interleaved RGB, row-major, top row first; unit above.
   std::vector<float> sun_diffuse, sun_specular, sky_diffuse, sky_specular, total;
+  // Specular sky samples marched exactly / interpolated (specular_reuse.h).
+  std::size_t specular_exact = 0, specular_interpolated = 0;
 };
 
 // The light of phase 2 as plain data: any sky radiance function (W·m⁻²·sr⁻¹·nm⁻¹, world

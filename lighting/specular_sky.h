@@ -25,7 +25,9 @@
 //     that loses several % of wide lobes). A wholly occluded cell costs one evaluation, at its
 //     far end, for this test.
 //  3. Lines are visited outward from Q's line in both δ directions while the line's largest G is
-//     ≥ ε·G_max or still rising from line to line (seed: while G(α*) ≥ ε).
+//     ≥ ε·G_max or still rising from line to line or the line added more than ε of the total
+//     (seed: while G(α*) ≥ ε). Both sweeps end only after `stop_after` (2) consecutive cells or
+//     lines met their test: at grazing views the integrand can dip and rise again.
 //  4. Integration in δ: visibility is constant across a band, and consecutive bands with
 //     identical visible intervals within the lobe window (open sky, typically) form one
 //     *segment* over which the lobe is smooth. The window is α ∈ [α_Q − R, α_Q + R] with
@@ -51,6 +53,7 @@
 //         out = k·F(V·H)·L(w) for unit sky direction w and scalar lobe factor k > 0; returns G.
 //     void mirror(const Vec3& q, double n_dot_v, double weight, Value& out);
 //         out = weight·F(N·V)·L(q)  (perfect mirror).
+//     double measure(const Value& x) const;   the G measure of an accumulated value (≥ 0)
 // SpectralReflection below integrates spectra (41 channels, the library's reference path);
 // specular_sky_colour.h integrates a few colour channels for the renderer.
 //
@@ -78,7 +81,8 @@ struct SpecularSkyOptions {
   double delta_step_per_m = 1.5;     // δ pieces ≤ delta_step_per_m · m ...
   double max_delta_step_rad = 0.2;   // ... and ≤ this
   double single_line_per_m = 0.5;    // a band ≤ this · m wide in δ is one line (seed eq. 7)
-  double grazing_floor = 0.5;        // steps scale with max(N·V, grazing_floor): see step 2
+  double min_compression = 0.02;     // floor of N·V in the lobe's width across the plane of incidence
+  int stop_after = 2;                // consecutive cells (lines) below ε that end a march (sweep)
   double lobe_window_per_m = 7.0;    // lines are integrated only within this · m of Q in α: step 4
   double mirror_below_m = 0.005;     // m below this: perfect mirror (single look-up)
 };
@@ -105,6 +109,7 @@ struct PointContext {
   Vec3 n, v, q;  // normal, unit view direction, mirror direction
   double n_dot_v = 0;
   double alpha_lo = 0, alpha_hi = kPi;  // the lobe window in α (step 4)
+  int stop_after = 2;                    // consecutive cells/lines below ε before stopping
   SpecularLobe lobe;
 };
 
@@ -168,7 +173,7 @@ double integrand(const PointContext& c, const Line& line, double alpha, Policy& 
 // adds ∫ to `acc` (unweighted) and updates g_max / line_max. g_start: G at α*.
 template <class Policy>
 void march(const PointContext& c, const Line& line, double alpha_star, double g_start, int dir, double step,
-           double eps, double& g_max, double& line_max, typename Policy::Value& acc, Policy& p,
+           double eps, double total, double& g_max, double& line_max, typename Policy::Value& acc, Policy& p,
            SpecularSkyStats& stats) {
   const std::span<const VisibleInterval> vis = c.view->visible(line.band);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(vis.size());
@@ -180,14 +185,16 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
     idx = count - 1;
     while (idx >= 0 && clamp_alpha(vis[idx].alpha0_rad) >= alpha_star) --idx;
   }
-  typename Policy::Value f;
+  typename Policy::Value f, cell;
   double a = alpha_star, g_prev = g_start;
+  int quiet = 0;  // consecutive cells that met the stop test
   const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
   while (dir > 0 ? a < end : a > end) {
     const double b = dir > 0 ? std::min(a + step, end) : std::max(a - step, end);
     const double lo_cell = std::min(a, b), hi_cell = std::max(a, b);
     double cell_g = 0;
     bool any = false;
+    cell = typename Policy::Value{};
     while (idx >= 0 && idx < count) {
       const double i0 = clamp_alpha(vis[idx].alpha0_rad), i1 = clamp_alpha(vis[idx].alpha1_rad);
       if (dir > 0 ? i0 >= hi_cell : i1 <= lo_cell) break;  // next interval starts beyond this cell
@@ -196,7 +203,7 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
         const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
         for (int n = 0; n < 3; ++n) {
           const double g = integrand(c, line, mid + half * kGl3X[n], p, f, stats);
-          if (g > 0.0) acc += f * (half * kGl3W[n]);
+          if (g > 0.0) cell += f * (half * kGl3W[n]);
           cell_g = std::max(cell_g, g);
         }
         any = true;
@@ -206,14 +213,20 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
       else break;
     }
     if (!any) cell_g = integrand(c, line, b, p, f, stats);  // wholly occluded: G decides whether to go on
+    acc += cell;
     g_max = std::max(g_max, cell_g);
     line_max = std::max(line_max, cell_g);
     // Stop once G is negligible AND no longer rising (G at α* can sit on the rising flank: near
-    // the pencil axis sin²α → 0, or off-specular peaks at grazing views).
-    const bool stop = cell_g <= eps * g_max && cell_g <= g_prev;
+    // the pencil axis sin²α → 0, or off-specular peaks at grazing views) AND the cell carried
+    // at most ε of what the point has gathered (at grazing views a low, wide tail under a sharp
+    // peak passes the first two tests while still holding several % of the integral).
+    const double mass = p.measure(cell) * line.weight;
+    const bool negligible = cell_g <= eps * g_max && cell_g <= g_prev &&
+                            mass <= eps * (total + p.measure(acc) * line.weight);
+    quiet = negligible ? quiet + 1 : 0;
     a = b;
     g_prev = cell_g;
-    if (stop) break;
+    if (quiet >= c.stop_after) break;
   }
 }
 
@@ -221,16 +234,18 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
 // largest G met on the line.
 template <class Policy>
 double integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max,
-                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats) {
+                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats, double* mass_out = nullptr) {
+  const double total = p.measure(acc);
   const double a_star = std::clamp(nearest_alpha(c.view->frame(), line.u, c.q), c.alpha_lo, c.alpha_hi);
   typename Policy::Value f_star;
   const double g_star = integrand(c, line, a_star, p, f_star, stats);  // for the stop tests only
   g_max = std::max(g_max, g_star);
   double line_max = g_star;
   typename Policy::Value line_sum;
-  march(c, line, a_star, g_star, +1, step, eps, g_max, line_max, line_sum, p, stats);
-  march(c, line, a_star, g_star, -1, step, eps, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, g_star, +1, step, eps, total, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, g_star, -1, step, eps, total, g_max, line_max, line_sum, p, stats);
   acc += line_sum * line.weight;
+  if (mass_out) *mass_out = p.measure(line_sum) * line.weight;
   ++stats.lines;
   return line_max;
 }
@@ -265,23 +280,49 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
   PointContext c;
   if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) return acc;
   const BandFrame& f = view.frame();
-  // The lobe's angular scale: √2·m, compressed across the plane of incidence by V·H ≈ N·V at
-  // grazing views (the reflected direction turns by 2(V·H)·dθ when H tilts out of that plane).
-  const double m = lobe.roughness_m * std::max(c.n_dot_v, opt.grazing_floor);
+  // The lobe's shape around Q, as a Gaussian in the tangent plane at Q: standard deviation
+  // σ∥ = √2·m in the plane of incidence (the reflected direction turns by 2·dθ when H tilts by
+  // dθ in that plane, and the Beckmann slope spread is m/√2) and σ⊥ = (V·H)·σ∥ ≈ (N·V)·σ∥ across
+  // it (it turns by 2(V·H)·dθ there): at grazing views the lobe is a thin streak. The steps
+  // follow the widths the rules see: along a line (direction e_α at Q) the conditional width
+  // 1/√(e_αᵀΣ⁻¹e_α); across lines (e_δ) the marginal width √(e_δᵀΣe_δ), turned into δ by the
+  // line spacing sin α_Q. m_a and m_d are these widths in units of √2 (= m at normal incidence).
+  double alpha_q, delta_q;
+  f.angles_of(c.q, alpha_q, delta_q);
+  double m_a, m_d;
+  {
+    const double sig_par = lobe.roughness_m;  // (/√2 units)
+    const double sig_perp = sig_par * std::clamp(c.n_dot_v, opt.min_compression, 1.0);
+    Vec3 p = c.n.cross(c.v);
+    if (!(p.norm() > 1e-9)) p = std::abs(c.q.z()) < 0.9 ? c.q.cross(Vec3(0, 0, 1)) : c.q.cross(Vec3(1, 0, 0));
+    p.normalize();
+    const Vec3 t = p.cross(c.q).normalized();  // in the plane of incidence, ⟂ Q
+    const Vec3 u_q = std::cos(delta_q) * f.h + std::sin(delta_q) * f.z;
+    const Vec3 e_a = -std::sin(alpha_q) * f.x + std::cos(alpha_q) * u_q;
+    const Vec3 e_d = -std::sin(delta_q) * f.h + std::cos(delta_q) * f.z;
+    const double at = e_a.dot(t), ap = e_a.dot(p), dt = e_d.dot(t), dp = e_d.dot(p);
+    m_a = 1.0 / std::sqrt(at * at / (sig_par * sig_par) + ap * ap / (sig_perp * sig_perp));
+    m_d = std::sqrt(sig_par * sig_par * dt * dt + sig_perp * sig_perp * dp * dp) / std::max(std::sin(alpha_q), 1e-3);
+    // The Gaussian model is a first-order picture (the lobe bends on the sphere, sin²α and G
+    // reshape it): never step coarser than the isotropic width m·max(N·V, ½) (measured in
+    // bench_specular, where the model alone doubled the worst errors).
+    const double iso = lobe.roughness_m * std::max(c.n_dot_v, 0.5);
+    m_a = std::min(m_a, iso);
+    m_d = std::min(m_d, iso);
+  }
   // The lobe window: every direction within R of Q has |α − α_Q| ≤ R (α is the angle from the
   // axis x, and |∠(ω, x) − ∠(Q, x)| ≤ ∠(ω, Q)), so integrating only α ∈ [α_Q − R, α_Q + R]
   // drops nothing of the cap ∠(ω, Q) ≤ R, outside which the Beckmann factor exp(−tan²θ_h/m²)
-  // with θ_h ≈ ∠(ω, Q)/2 is below e^{−R²/4m²} = 5·10⁻⁶ of its peak at R = 7m.
+  // with θ_h ≥ ∠(ω, Q)/2 in the plane of incidence is below e^{−R²/4m²} = 5·10⁻⁶ of its peak
+  // at R = 7m (across it the lobe is narrower still).
   {
-    double alpha_q, delta_q;
-    f.angles_of(c.q, alpha_q, delta_q);
     const double r = opt.lobe_window_per_m * lobe.roughness_m;
     c.alpha_lo = std::max(0.0, alpha_q - r);
     c.alpha_hi = std::min(kPi, alpha_q + r);
   }
-  const double a_step = std::min(opt.alpha_step_per_m * m, opt.max_alpha_step_rad);
-  const double d_step = std::min(opt.delta_step_per_m * m, opt.max_delta_step_rad);
-  const double single = opt.single_line_per_m * m;
+  const double a_step = std::min(opt.alpha_step_per_m * m_a, opt.max_alpha_step_rad);
+  const double d_step = std::min(opt.delta_step_per_m * m_d, opt.max_delta_step_rad);
+  const double single = opt.single_line_per_m * m_d;
   const double eps = opt.epsilon;
 
   // Start: the line of Q's segment nearest δ_Q.
@@ -289,6 +330,7 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
   const Segment seg_q = segment_at(c, band_of_s(view, s_q), 0, d_step, single);
   const int k_q = nearest_line(seg_q, f.delta_at(s_q));
 
+  c.stop_after = std::max(1, opt.stop_after);
   double g_max = 0;
   const double first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_step, eps, g_max, acc, p, stats);
   // Outward in δ: lower lines/segments, then higher ones, each until a line's largest G is
@@ -297,6 +339,7 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
     Segment seg = seg_q;
     int k = k_q;
     double prev_max = first_max;
+    int quiet = 0;
     for (;;) {
       k += dir;
       if (k < 0 || k >= seg.count) {
@@ -304,8 +347,10 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
         seg = segment_at(c, dir < 0 ? seg.b0 - 1 : seg.b1 + 1, dir, d_step, single);
         k = dir > 0 ? 0 : seg.count - 1;
       }
-      const double line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats);
-      if (line_max <= eps * g_max && line_max <= prev_max) break;
+      double mass = 0;
+      const double line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats, &mass);
+      quiet = line_max <= eps * g_max && line_max <= prev_max && mass <= eps * p.measure(acc) ? quiet + 1 : 0;
+      if (quiet >= c.stop_after) break;
       prev_max = line_max;
     }
   }
@@ -333,6 +378,11 @@ struct SpectralReflection {
     double mean = 0;
     for (int i = 0; i < kSpectrumSamples; ++i) mean += out[i];
     return std::max(mean / kSpectrumSamples, 0.0);
+  }
+  double measure(const Spectrum& x) const {
+    double mean = 0;
+    for (int i = 0; i < kSpectrumSamples; ++i) mean += x[i];
+    return std::abs(mean / kSpectrumSamples);
   }
   void mirror(const Vec3& q, double n_dot_v, double weight, Spectrum& out) {
     sky(q, out);

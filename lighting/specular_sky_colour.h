@@ -69,6 +69,11 @@ class ColourSpecularSky {
       return std::max(y, 0.0);
     }
     void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const { weighted(q, n_dot_v, weight, out); }
+    double measure(const Value& x) const {
+      double y = 0;
+      for (int j = 0; j < R; ++j) y += x.v[R + j];
+      return std::abs(y);
+    }
   };
 
  private:

@@ -1,0 +1,212 @@
+#include "lighting/specular_reuse.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace skyband {
+
+namespace {
+
+template <class F>
+void in_arena(int threads, F&& f) {
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(f);
+  } else {
+    f();
+  }
+}
+
+constexpr double kNormalTolerance = 1e-6;  // 1 − n₁·n₂
+constexpr double kPlaneTolerance_m = 1e-3;
+
+bool same_plane(const SurfaceSample& a, const SurfaceSample& b) {
+  return a.material_slot == b.material_slot && a.normal.dot(b.normal) >= 1.0 - kNormalTolerance &&
+         std::abs(a.normal.dot(b.position - a.position)) <= kPlaneTolerance_m;
+}
+
+Xyz bilinear(const Xyz (&c)[4], double fx, double fy) {
+  const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  Xyz r;
+  for (int j = 0; j < 4; ++j) {
+    r.X += wt[j] * c[j].X;
+    r.Y += wt[j] * c[j].Y;
+    r.Z += wt[j] * c[j].Z;
+  }
+  return r;
+}
+
+// Whether the corners' bilinear interpolation at (fx, fy) matches `actual` within tolerance × the
+// largest magnitude of the five values, in each of X, Y, Z.
+bool predicts(const Xyz (&c)[4], double fx, double fy, const Xyz& actual, double tolerance) {
+  const Xyz p = bilinear(c, fx, fy);
+  const double pv[3] = {p.X, p.Y, p.Z}, av[3] = {actual.X, actual.Y, actual.Z};
+  for (int ch = 0; ch < 3; ++ch) {
+    double mag = std::abs(av[ch]);
+    for (const Xyz& x : c) mag = std::max(mag, std::abs(ch == 0 ? x.X : ch == 1 ? x.Y : x.Z));
+    if (std::abs(pv[ch] - av[ch]) > tolerance * mag) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+namespace {
+
+// The state of one shading call: what is known exactly, and the recursion over one block.
+class Reuse {
+ public:
+  Reuse(const GeometryPass& pass, double tolerance, const std::function<bool(std::size_t)>& glossy,
+        const std::function<bool(std::size_t)>& reusable, const std::function<Xyz(std::size_t)>& exact,
+        std::vector<Xyz>& out)
+      : pass_(pass), tolerance_(tolerance), glossy_(glossy), reusable_(reusable), exact_(exact), out_(out),
+        done_(pass.surfaces.size(), 0) {}
+
+  // The surface of sample i of pixel (col, row); kBackground outside the image (so blocks that
+  // overhang the image are never smooth and get split down to the image).
+  std::uint32_t at(int col, int row, std::size_t i) const {
+    if (col < 0 || row < 0 || col >= pass_.width || row >= pass_.height) return GeometryPass::kBackground;
+    return pass_.sample_surface[(static_cast<std::size_t>(row) * static_cast<std::size_t>(pass_.width) +
+                                 static_cast<std::size_t>(col)) * static_cast<std::size_t>(pass_.samples) + i];
+  }
+  bool glossy(std::uint32_t k) const { return k != GeometryPass::kBackground && glossy_(k); }
+  // March surface k once (callers guarantee that no other thread touches k meanwhile).
+  void ensure(std::uint32_t k, std::size_t& marched) {
+    if (!glossy(k) || done_[k]) return;
+    out_[k] = exact_(k);
+    done_[k] = 1;
+    ++marched;
+  }
+  // Pixels [xa, xb) × [ya, yb) of sample index i, corners (xa|xb, ya|yb) known exactly.
+  void refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block, std::size_t& marched, std::size_t& interpolated);
+  // Every owned pixel of [xa, xb) × [ya, yb) exactly.
+  void all_exact(int xa, int xb, int ya, int yb, std::size_t i, std::size_t& marched) {
+    for (int row = ya; row < yb; ++row)
+      for (int col = xa; col < xb; ++col) ensure(at(col, row, i), marched);
+  }
+
+ private:
+  const GeometryPass& pass_;
+  double tolerance_;
+  const std::function<bool(std::size_t)>& glossy_;
+  const std::function<bool(std::size_t)>& reusable_;
+  const std::function<Xyz(std::size_t)>& exact_;
+  std::vector<Xyz>& out_;
+  std::vector<std::uint8_t> done_;  // 1: out_[k] is the exact march
+};
+
+void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block, std::size_t& marched,
+                   std::size_t& interpolated) {
+  const int xm = (xa + xb) / 2, ym = (ya + yb) / 2;
+  const std::uint32_t corner[4] = {at(xa, ya, i), at(xb, ya, i), at(xa, yb, i), at(xb, yb, i)};
+  // Corners on the right or bottom edge may lie in a sibling block processed later (siblings
+  // run in row-major order within one task) or on the top-level grid (marched in pass 1).
+  for (std::uint32_t k : corner) ensure(k, marched);
+  const std::uint32_t centre = at(xm, ym, i);
+  // The check points: the centre and the four edge midpoints (the children's corners, marched
+  // anyway if the block is split).
+  const std::uint32_t mid[5] = {centre, at(xm, ya, i), at(xa, ym, i), at(xb, ym, i), at(xm, yb, i)};
+  const double fxm = double(xm - xa) / (xb - xa), fym = double(ym - ya) / (yb - ya);
+  const double fx[5] = {fxm, fxm, 0.0, 1.0, fxm}, fy[5] = {fym, 0.0, fym, fym, 1.0};
+  bool smooth = glossy(centre) && reusable_(centre);
+  for (int j = 0; smooth && j < 4; ++j) smooth = glossy(corner[j]) && same_plane(pass_.surfaces[centre], pass_.surfaces[corner[j]]);
+  for (int j = 1; smooth && j < 5; ++j) smooth = glossy(mid[j]) && same_plane(pass_.surfaces[centre], pass_.surfaces[mid[j]]);
+  Xyz c[4];
+  if (smooth) {
+    for (int j = 0; j < 4; ++j) c[j] = out_[corner[j]];
+    for (int j = 0; smooth && j < 5; ++j) {
+      ensure(mid[j], marched);
+      smooth = predicts(c, fx[j], fy[j], out_[mid[j]], tolerance_);
+    }
+  }
+  if (smooth) {
+    for (int row = ya; row < yb; ++row)
+      for (int col = xa; col < xb; ++col) {
+        const std::uint32_t k = at(col, row, i);
+        if (!glossy(k) || done_[k]) continue;
+        if (same_plane(pass_.surfaces[centre], pass_.surfaces[k])) {
+          out_[k] = bilinear(c, double(col - xa) / (xb - xa), double(row - ya) / (yb - ya));
+          ++interpolated;
+        } else {
+          ensure(k, marched);
+        }
+      }
+    return;
+  }
+  if (xa >= pass_.width || ya >= pass_.height) return;  // wholly outside the image
+  if (xb - xa <= min_block || yb - ya <= min_block) {
+    all_exact(xa, std::min(xb, pass_.width), ya, std::min(yb, pass_.height), i, marched);
+    return;
+  }
+  // Split in four (each child marches its corners first).
+  refine(xa, xm, ya, ym, i, min_block, marched, interpolated);
+  refine(xm, xb, ya, ym, i, min_block, marched, interpolated);
+  refine(xa, xm, ym, yb, i, min_block, marched, interpolated);
+  refine(xm, xb, ym, yb, i, min_block, marched, interpolated);
+}
+
+}  // namespace
+
+SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block, double tolerance,
+                                             const std::function<bool(std::size_t)>& glossy,
+                                             const std::function<bool(std::size_t)>& reusable,
+                                             const std::function<Xyz(std::size_t)>& exact, int threads,
+                                             std::vector<Xyz>& out) {
+  const int w = pass.width, h = pass.height;
+  const std::size_t spp = static_cast<std::size_t>(pass.samples);
+  Reuse r(pass, tolerance, glossy, reusable, exact, out);
+  std::atomic<std::size_t> n_exact{0}, n_interp{0};
+  // Block sizes: the top level `block` rounded down to min_block·2^j; min_block = 4 (below that
+  // a block's exact samples are as many as its interpolated ones).
+  constexpr int kMinBlock = 4;
+  int top = kMinBlock;
+  while (top * 2 <= block) top *= 2;
+  const bool reuse = block >= kMinBlock && tolerance > 0.0;
+  if (!reuse) {
+    in_arena(threads, [&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
+        std::size_t marched = 0;
+        for (int row = rows.begin(); row != rows.end(); ++row)
+          for (std::size_t i = 0; i < spp; ++i) r.all_exact(0, w, row, row + 1, i, marched);
+        n_exact += marched;
+      });
+    });
+    return {n_exact.load(), 0};
+  }
+  // Top-level blocks cover the image; those overhanging its right or bottom edge are split.
+  const int nx = (w - 1 + top - 1) / top, ny = (h - 1 + top - 1) / top;
+  // Pass 1: the block edges on the min_block grid (shared between neighbouring blocks).
+  in_arena(threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
+      std::size_t marched = 0;
+      for (int row = rows.begin(); row != rows.end(); ++row)
+        for (int col = 0; col < w; ++col) {
+          const bool on_h = row % top == 0 && col % kMinBlock == 0, on_v = col % top == 0 && row % kMinBlock == 0;
+          if (!on_h && !on_v) continue;
+          for (std::size_t i = 0; i < spp; ++i) r.ensure(r.at(col, row, i), marched);
+        }
+      n_exact += marched;
+    });
+  });
+  // Pass 2: each block refines itself: it writes only its own pixels [x0, x0 + top) ×
+  // [y0, y0 + top) and reads the pass-1 points on its edges.
+  in_arena(threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, ny, 1), [&](const tbb::blocked_range<int>& brows) {
+      std::size_t marched = 0, interpolated = 0;
+      for (int by = brows.begin(); by != brows.end(); ++by)
+        for (int bx = 0; bx < nx; ++bx)
+          for (std::size_t i = 0; i < spp; ++i)
+            r.refine(bx * top, (bx + 1) * top, by * top, (by + 1) * top, i, kMinBlock, marched, interpolated);
+      n_exact += marched;
+      n_interp += interpolated;
+    });
+  });
+  return {n_exact.load(), n_interp.load()};
+}
+
+}  // namespace skyband

@@ -1,0 +1,45 @@
+#pragma once
+// Image-space reuse of the specular sky term (renderer phase 2).
+//
+// The reflected sky of a glossy surface is the visible sky convolved with a lobe several degrees
+// wide, so across a few pixels of one plane it changes smoothly; the ε-march is by far the
+// dearest term (specular_sky.h). The image is cut into blocks of B × B pixels (B a power of two
+// times 4) refined as a quadtree down to 4 × 4. Per pixel-sample index, the samples at block
+// corners are marched exactly, and so are each block's centre and edge midpoints (the corners
+// of its children). A block is *smooth* when
+//   - these nine samples hit the same material slot and the same plane (unit normals within
+//     10⁻⁶, plane offsets n·p within 1 mm), of a glossy material that is not a near-mirror
+//     (roughness ≥ min_roughness: a mirror keeps the scene's sharp edges), and
+//   - the corners' bilinear interpolation predicts the five marched check points within
+//     `tolerance` of the largest magnitude involved, in each of X, Y and Z: an a-posteriori
+//     check of the interpolation error where it is largest for a smooth term, in both axes.
+// In a smooth block, the samples on the same plane take the bilinear interpolation of the
+// corners and all others are marched exactly; a block that is not smooth is split in four, and
+// a 4 × 4 block that is not smooth is marched exactly. Blocks overhanging the image's right or
+// bottom edge are never smooth (their outside corners have no sample) and are split. Deterministic (decisions use computed values only) and
+// independent of the thread count. block ≤ 1 or tolerance ≤ 0: every sample exactly.
+// What it costs in accuracy is measured against exact shading in bench_render (max and mean
+// deviation over the figure) and bounded in renderer_test.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "lighting/colour.h"
+#include "lighting/renderer.h"
+
+namespace skyband {
+
+struct SpecularReuseStats {
+  std::size_t exact = 0, interpolated = 0;
+};
+
+// out[k] = specular sky XYZ of surface k for every k with glossy(k) (others left untouched).
+// `exact(k)` marches surface k; `glossy(k)`: surface k has a specular term; `reusable(k)`: its
+// material may be interpolated (rough enough).
+SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block, double tolerance,
+                                             const std::function<bool(std::size_t)>& glossy,
+                                             const std::function<bool(std::size_t)>& reusable,
+                                             const std::function<Xyz(std::size_t)>& exact, int threads,
+                                             std::vector<Xyz>& out);
+
+}  // namespace skyband
