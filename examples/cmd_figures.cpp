@@ -36,6 +36,7 @@ namespace {
 struct FiguresOptions {
   std::string out = "figures";
   int width = 160, height = 120, samples = 1, bands = 64, threads = 0;
+  double reuse_tolerance = 0.01;  // image-space specular reuse (lighting/specular_reuse.h); 0 = off
 };
 
 struct Variant {
@@ -54,6 +55,8 @@ void run_figures(const FiguresOptions& o) {
   if (o.samples < 1 || o.samples > 256) throw InputError("--samples " + std::to_string(o.samples) + ": must be in [1, 256]");
   if (o.bands < 1 || o.bands > 4096) throw InputError("--bands " + std::to_string(o.bands) + ": must be in [1, 4096]");
   if (o.threads < 0 || o.threads > 1024) throw InputError("--threads " + std::to_string(o.threads) + ": must be in [0, 1024]");
+  if (!(o.reuse_tolerance >= 0 && o.reuse_tolerance <= 0.5))
+    throw InputError("--reuse-tolerance " + std::to_string(o.reuse_tolerance) + ": must be in [0, 0.5]");
   const std::filesystem::path dir(o.out);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -65,6 +68,7 @@ void run_figures(const FiguresOptions& o) {
   const PinholeCamera camera(pb.camera);
   RenderSettings settings;
   settings.samples_per_pixel = o.samples;
+  settings.specular_reuse_tolerance = o.reuse_tolerance;
   settings.visibility.bands = o.bands;
   settings.visibility.tolerance = 0;  // fixed N: one sky table per face orientation
   settings.threads = o.threads;
@@ -145,6 +149,9 @@ const CommandRegistration reg("figures", [](CLI::App& app) {
   sub->add_option("--samples", opts->samples, "Samples per pixel (deterministic pattern)")->capture_default_str();
   sub->add_option("--bands", opts->bands, "Number of equal-weight bands N")->capture_default_str();
   sub->add_option("--threads", opts->threads, "Worker threads (0 = all cores)")->capture_default_str();
+  sub->add_option("--reuse-tolerance", opts->reuse_tolerance,
+                  "Image-space reuse of the specular sky term: relative check tolerance (0 = march every pixel)")
+      ->capture_default_str();
   sub->callback([opts] { run_figures(*opts); });
   return sub;
 });

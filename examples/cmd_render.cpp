@@ -53,6 +53,8 @@ void run_render(const RenderOptions& o) {
   settings.visibility.tolerance = desc.tolerance;
   settings.specular.epsilon = desc.epsilon;
   settings.paper_scale = desc.paper_scale;
+  settings.specular_reuse_block = desc.reuse_block;
+  settings.specular_reuse_tolerance = desc.reuse_tolerance;
   settings.threads = o.threads;
   const Vec3 sun_dir = direction_from_altitude_azimuth(desc.sun_altitude_deg * kPi / 180.0, desc.sun_azimuth_deg * kPi / 180.0);
   const SkyModel sky(desc.atmosphere, sun_dir, desc.sky_spec);

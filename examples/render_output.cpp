@@ -16,10 +16,12 @@ std::map<std::string, std::string> render_attributes(const SkyModel& sky, const 
   std::snprintf(sun, sizeof sun, "altitude %.4f deg, azimuth %.4f deg (clockwise from north), direct normal %.2f W/m2",
                 altitude_of(sky.sun_direction()) * 180.0 / kPi, azimuth_of(sky.sun_direction()) * 180.0 / kPi,
                 sky.sun_direct_normal().integral_nm());
-  char quality[200];
-  std::snprintf(quality, sizeof quality, "bands %d, tolerance %g, specular epsilon %g, samples per pixel %d, %s",
+  char quality[300];
+  std::snprintf(quality, sizeof quality,
+                "bands %d, tolerance %g, specular epsilon %g, specular reuse block %d tolerance %g, samples per pixel %d, %s",
                 settings.visibility.bands, settings.visibility.tolerance, settings.specular.epsilon,
-                settings.samples_per_pixel, settings.paper_scale ? "Cook-Torrance 1982 scale" : "microfacet f_s");
+                settings.specular_reuse_block, settings.specular_reuse_tolerance, settings.samples_per_pixel,
+                settings.paper_scale ? "Cook-Torrance 1982 scale" : "microfacet f_s");
   std::map<std::string, std::string> a = {
       {"skyband_version", SKYBAND_VERSION},
       {"skyband_command", invocation()},

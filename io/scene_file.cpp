@@ -22,7 +22,7 @@ const std::set<std::string>& known_keys() {
       "camera.fov_deg",  "sun.altitude_deg",  "sun.azimuth_deg",  "sun.latitude_deg",   "sun.longitude_deg",
       "sun.elevation_m", "sun.time",          "sun.utc_offset_hours", "sky.model",      "sky.aod550",
       "sky.angstrom_alpha", "sky.ozone_du",   "sky.zenith_luminance_cd_m2", "quality.bands", "quality.tolerance",
-      "quality.epsilon", "quality.samples",   "quality.paper_scale", "image.width",     "image.height",
+      "quality.epsilon", "quality.samples",   "quality.paper_scale", "quality.reuse_block", "quality.reuse_tolerance", "image.width",     "image.height",
       "image.exposure"};
   return k;
 }
@@ -305,6 +305,8 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
   if (auto v = r.number("quality.epsilon", 1e-12, 0.999, "in (0, 1)")) s.epsilon = *v;
   if (auto v = r.integer("quality.samples", 1, 256)) s.samples = *v;
   if (auto v = r.boolean("quality.paper_scale")) s.paper_scale = *v;
+  if (auto v = r.integer("quality.reuse_block", 1, 1024)) s.reuse_block = *v;
+  if (auto v = r.number("quality.reuse_tolerance", 0, 0.5, "in [0, 0.5] (0 = off)")) s.reuse_tolerance = *v;
   return s;
 }
 

@@ -151,22 +151,28 @@ inline constexpr double kGl2W[2] = {1.0, 1.0};
 inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
 inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
 
-// Integrand w_s f_s L sin²α at α on `line` into `out`; returns its G.
+// Integrand w_s f_s L sin²α at the point (cos α, sin α) of `line` into `out`; returns its G.
 template <class Policy>
-double integrand(const PointContext& c, const Line& line, double alpha, Policy& p, typename Policy::Value& out,
-                 SpecularSkyStats& stats) {
+double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p,
+                    typename Policy::Value& out, SpecularSkyStats& stats) {
   const BandFrame& f = c.view->frame();
-  const double sa = std::sin(alpha);
-  const Vec3 w = std::cos(alpha) * f.x + sa * line.u;
+  const Vec3 w = cos_a * f.x + sin_a * line.u;
   MicrofacetCosines mc;
   double k = 0;
-  if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor(mc) * sa * sa;
+  if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor(mc) * sin_a * sin_a;
   if (!(k > 0.0)) {
     out = typename Policy::Value{};
     return 0.0;
   }
   ++stats.radiance_evals;
   return p.eval(w, mc.v_dot_h, k, out);
+}
+
+// The same at angle α.
+template <class Policy>
+double integrand(const PointContext& c, const Line& line, double alpha, Policy& p, typename Policy::Value& out,
+                 SpecularSkyStats& stats) {
+  return integrand_cs(c, line, std::cos(alpha), std::sin(alpha), p, out, stats);
 }
 
 // March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of `line`;
@@ -187,6 +193,7 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
   }
   typename Policy::Value f, cell;
   double a = alpha_star, g_prev = g_start;
+  double cached_half = -1, sin_d = 0, cos_d = 1;  // sin, cos of the outer GL offset half·x₃
   int quiet = 0;  // consecutive cells that met the stop test
   const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
   while (dir > 0 ? a < end : a > end) {
@@ -201,8 +208,18 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
       const double lo = std::max(lo_cell, i0), hi = std::min(hi_cell, i1);
       if (hi > lo) {
         const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        // The three nodes mid − d, mid, mid + d by angle addition: one sin/cos pair per piece
+        // (and one per distinct width; full cells share it).
+        if (half != cached_half) {
+          cached_half = half;
+          sin_d = std::sin(half * kGl3X[2]);
+          cos_d = std::cos(half * kGl3X[2]);
+        }
+        const double sm = std::sin(mid), cm = std::cos(mid);
+        const double node_cos[3] = {cm * cos_d + sm * sin_d, cm, cm * cos_d - sm * sin_d};
+        const double node_sin[3] = {sm * cos_d - cm * sin_d, sm, sm * cos_d + cm * sin_d};
         for (int n = 0; n < 3; ++n) {
-          const double g = integrand(c, line, mid + half * kGl3X[n], p, f, stats);
+          const double g = integrand_cs(c, line, node_cos[n], node_sin[n], p, f, stats);
           if (g > 0.0) cell += f * (half * kGl3W[n]);
           cell_g = std::max(cell_g, g);
         }

@@ -67,6 +67,8 @@ BOOST_AUTO_TEST_CASE(parses_keys_and_defaults) {
   BOOST_TEST(s.sun_altitude_deg == 30.0);
   BOOST_TEST(s.sun_azimuth_deg == 200.0);
   BOOST_TEST(s.bands == 64);       // documented defaults (scene_file.h)
+  BOOST_TEST(s.reuse_block == 16);
+  BOOST_TEST(s.reuse_tolerance == 0.01);
   BOOST_TEST(s.samples == 1);
   BOOST_TEST(s.tolerance == 0.0);
   BOOST_TEST(s.sky_model == "multiple");
@@ -126,6 +128,8 @@ BOOST_AUTO_TEST_CASE(every_error_names_where_the_key_and_the_value) {
       {kBase, {"quality.bands=0"}, {"quality.bands", "[1, 4096]"}},
       {kBase, {"quality.epsilon=0"}, {"quality.epsilon", "(0, 1)"}},
       {kBase, {"quality.paper_scale=3"}, {"quality.paper_scale", "true or false"}},
+      {kBase, {"quality.reuse_tolerance=0.9"}, {"quality.reuse_tolerance", "[0, 0.5]"}},
+      {kBase, {"quality.reuse_block=0"}, {"quality.reuse_block", "[1, 1024]"}},
       {kBase, {"sky.model=rainbow"}, {"sky.model", "rainbow"}},
       {kBase, {"sky.aod550=-1"}, {"sky.aod550", "[0, 10]"}},
       {kBase, {"sky.zenith_luminance_cd_m2=5000"}, {"sky.zenith_luminance_cd_m2", "CIE"}},
