@@ -38,7 +38,7 @@
 //   epsilon = 1e-3           # truncation threshold of the specular sky march (seed §3), (0, 1)
 //   samples = 1              # samples per pixel, [1, 256]
 //   paper_scale = false      # Cook–Torrance 1982 ×4 scale instead of the microfacet form
-//   reuse_block = 16         # image-space reuse of the specular sky term: largest block, pixels,
+//   reuse_block = 32         # image-space reuse of the specular sky term: largest block, pixels,
 //                            # [1, 1024] (rounded down to 4·2^k; < 4 = off; specular_reuse.h)
 //   reuse_tolerance = 0.01   # its relative check tolerance, [0, 0.5] (0 = every pixel marched)
 //
@@ -81,7 +81,7 @@ struct SceneDescription {
   double epsilon = 1e-3;
   int samples = 1;
   bool paper_scale = false;
-  int reuse_block = 16;
+  int reuse_block = 32;
   double reuse_tolerance = 0.01;
   std::optional<double> exposure;
 };

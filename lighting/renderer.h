@@ -51,7 +51,7 @@ struct RenderSettings {
   // many pixels, interpolated where the corners' bilinear interpolation predicts the marched
   // centre within the tolerance (relative), for materials at least this rough. Block < 4 or
   // tolerance 0: every sample exact.
-  int specular_reuse_block = 16;
+  int specular_reuse_block = 32;
   double specular_reuse_tolerance = 0.01;
   double specular_reuse_min_roughness = 0.05;
   bool paper_scale = false;        // Cook–Torrance 1982 scale (×4) instead of the microfacet form

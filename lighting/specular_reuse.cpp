@@ -180,13 +180,16 @@ SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block
   }
   // Top-level blocks cover the image; those overhanging its right or bottom edge are split.
   const int nx = (w - 1 + top - 1) / top, ny = (h - 1 + top - 1) / top;
-  // Pass 1: the block edges on the min_block grid (shared between neighbouring blocks).
+  // Pass 1: every other pixel of the top-level block edges (shared between neighbouring blocks
+  // processed by other tasks): all corners and check points any refinement of a block can use
+  // on its edges (the finest, 4 × 4, checks its edge midpoints at 2-pixel spacing), so no task
+  // ever marches or reads a sample that another task may write.
   in_arena(threads, [&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
       std::size_t marched = 0;
       for (int row = rows.begin(); row != rows.end(); ++row)
         for (int col = 0; col < w; ++col) {
-          const bool on_h = row % top == 0 && col % kMinBlock == 0, on_v = col % top == 0 && row % kMinBlock == 0;
+          const bool on_h = row % top == 0 && col % 2 == 0, on_v = col % top == 0 && row % 2 == 0;
           if (!on_h && !on_v) continue;
           for (std::size_t i = 0; i < spp; ++i) r.ensure(r.at(col, row, i), marched);
         }

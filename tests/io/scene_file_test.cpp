@@ -67,7 +67,7 @@ BOOST_AUTO_TEST_CASE(parses_keys_and_defaults) {
   BOOST_TEST(s.sun_altitude_deg == 30.0);
   BOOST_TEST(s.sun_azimuth_deg == 200.0);
   BOOST_TEST(s.bands == 64);       // documented defaults (scene_file.h)
-  BOOST_TEST(s.reuse_block == 16);
+  BOOST_TEST(s.reuse_block == 32);
   BOOST_TEST(s.reuse_tolerance == 0.01);
   BOOST_TEST(s.samples == 1);
   BOOST_TEST(s.tolerance == 0.0);
