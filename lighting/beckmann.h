@@ -13,12 +13,18 @@
 
 namespace skyband {
 
-inline double beckmann_d(double cos_theta_h, double m) {
+// `exp_neg(x)` = e^{−x} (std::exp or the tabulated fast_exp.h).
+template <class ExpNeg>
+inline double beckmann_d_with(double cos_theta_h, double m, ExpNeg&& exp_neg) {
   if (cos_theta_h <= 0.0) return 0.0;
   const double c2 = cos_theta_h * cos_theta_h;
   const double tan2 = (1.0 - c2) / c2;
   const double m2 = m * m;
-  return std::exp(-tan2 / m2) / (kPi * m2 * c2 * c2);
+  return exp_neg(tan2 / m2) / (kPi * m2 * c2 * c2);
+}
+
+inline double beckmann_d(double cos_theta_h, double m) {
+  return beckmann_d_with(cos_theta_h, m, [](double x) { return std::exp(-x); });
 }
 
 // Geometric attenuation (masking/shadowing by V-grooves), Cook & Torrance 1982 eq. for G:

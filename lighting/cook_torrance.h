@@ -14,6 +14,7 @@
 // Fresnel-free, wavelength-independent part.
 #include "geometry/vec3.h"
 #include "lighting/beckmann.h"
+#include "lighting/fast_exp.h"
 #include "lighting/fresnel.h"
 
 namespace skyband {
@@ -39,13 +40,19 @@ inline bool microfacet_cosines(const Vec3& n, const Vec3& l, const Vec3& v, Micr
   return true;
 }
 
-// D_n·G / (4 (N·L)(N·V)) — f_s without F, in sr⁻¹ (times kPaperScale if paper_scale).
-inline double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale = false) {
+// D_n·G / (4 (N·L)(N·V)) — f_s without F, in sr⁻¹ (times kPaperScale if paper_scale), with
+// `exp_neg(x)` = e^{−x} in the Beckmann factor.
+template <class ExpNeg>
+inline double cook_torrance_lobe_with(const MicrofacetCosines& c, double roughness_m, bool paper_scale, ExpNeg&& exp_neg) {
   if (c.n_dot_l <= 0.0 || c.n_dot_v <= 0.0) return 0.0;
-  const double d = beckmann_d(c.n_dot_h, roughness_m);
+  const double d = beckmann_d_with(c.n_dot_h, roughness_m, exp_neg);
   const double g = cook_torrance_g(c.n_dot_h, c.n_dot_v, c.n_dot_l, c.v_dot_h);
   const double fs = d * g / (4.0 * c.n_dot_l * c.n_dot_v);
   return paper_scale ? kPaperScale * fs : fs;
+}
+
+inline double cook_torrance_lobe(const MicrofacetCosines& c, double roughness_m, bool paper_scale = false) {
+  return cook_torrance_lobe_with(c, roughness_m, paper_scale, [](double x) { return std::exp(-x); });
 }
 
 // f_s(L, V) for a wavelength-independent Fresnel factor `fresnel` (sr⁻¹).
@@ -70,6 +77,10 @@ struct SpecularLobe {
 
   // s·(D_n G / 4(N·L)(N·V))·(4 if paper_scale): the wavelength-independent factor, sr⁻¹.
   double factor(const MicrofacetCosines& c) const { return weight * cook_torrance_lobe(c, roughness_m, paper_scale); }
+  // The same with the tabulated e^{−x} (fast_exp.h, relative difference < 10⁻¹⁰): the sky march.
+  double factor_fast(const MicrofacetCosines& c) const {
+    return weight * cook_torrance_lobe_with(c, roughness_m, paper_scale, [](double x) { return exp_neg(x); });
+  }
 };
 
 }  // namespace skyband

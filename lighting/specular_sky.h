@@ -159,7 +159,7 @@ double integrand_cs(const PointContext& c, const Line& line, double cos_a, doubl
   const Vec3 w = cos_a * f.x + sin_a * line.u;
   MicrofacetCosines mc;
   double k = 0;
-  if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor(mc) * sin_a * sin_a;
+  if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor_fast(mc) * sin_a * sin_a;
   if (!(k > 0.0)) {
     out = typename Policy::Value{};
     return 0.0;
