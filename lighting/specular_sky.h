@@ -27,7 +27,8 @@
 //  3. Lines are visited outward from Q's line in both δ directions while the line's largest G is
 //     ≥ ε·G_max or still rising from line to line or the line added more than ε of the total
 //     (seed: while G(α*) ≥ ε). Both sweeps end only after `stop_after` (2) consecutive cells or
-//     lines met their test: at grazing views the integrand can dip and rise again.
+//     lines met their test: at grazing views the integrand can dip and rise again. "Rising" is
+//     judged by G, or by the Beckmann exponent where G has underflowed to 0 (Level, rising()).
 //  4. Integration in δ: visibility is constant across a band, and consecutive bands with
 //     identical visible intervals within the lobe window (open sky, typically) form one
 //     *segment* over which the lobe is smooth. The window is α ∈ [α_Q − R, α_Q + R] with
@@ -64,6 +65,7 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <limits>
 #include <type_traits>
 
 #include "geometry/band_frame.h"
@@ -152,14 +154,37 @@ inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834
 inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
 
 // Integrand w_s f_s L sin²α at the point (cos α, sin α) of `line` into `out`; returns its G.
+// How far into the lobe a sample is, for the stop tests: its G, and the Beckmann exponent
+// x = tan²θ_h/m², which still orders samples where G has underflowed to 0 (e^{−x} < 10⁻³⁰⁸
+// beyond x ≈ 708, i.e. θ_h > 29° for m = 0.02): a march must not take such a plateau for a
+// decay when it is in fact approaching an off-specular peak.
+struct Level {
+  double g = 0;
+  double x = std::numeric_limits<double>::infinity();
+};
+// Whether `now` lies further into the lobe than `before`.
+inline bool rising(const Level& now, const Level& before) {
+  return (now.g > 0.0 || before.g > 0.0) ? now.g > before.g : now.x < before.x;
+}
+inline void raise(Level& l, const Level& o) {
+  l.g = std::max(l.g, o.g);
+  l.x = std::min(l.x, o.x);
+}
+
 template <class Policy>
 double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p,
-                    typename Policy::Value& out, SpecularSkyStats& stats) {
+                    typename Policy::Value& out, SpecularSkyStats& stats, double* exponent = nullptr) {
   const BandFrame& f = c.view->frame();
   const Vec3 w = cos_a * f.x + sin_a * line.u;
   MicrofacetCosines mc;
   double k = 0;
-  if (microfacet_cosines(c.n, w, c.v, mc)) k = c.lobe.factor_fast(mc) * sin_a * sin_a;
+  if (microfacet_cosines(c.n, w, c.v, mc)) {
+    k = c.lobe.factor_fast(mc) * sin_a * sin_a;
+    if (exponent && mc.n_dot_h > 0.0) {
+      const double c2 = mc.n_dot_h * mc.n_dot_h, m = c.lobe.roughness_m;
+      *exponent = (1.0 - c2) / (c2 * m * m);
+    }
+  }
   if (!(k > 0.0)) {
     out = typename Policy::Value{};
     return 0.0;
@@ -171,15 +196,23 @@ double integrand_cs(const PointContext& c, const Line& line, double cos_a, doubl
 // The same at angle α.
 template <class Policy>
 double integrand(const PointContext& c, const Line& line, double alpha, Policy& p, typename Policy::Value& out,
-                 SpecularSkyStats& stats) {
-  return integrand_cs(c, line, std::cos(alpha), std::sin(alpha), p, out, stats);
+                 SpecularSkyStats& stats, double* exponent = nullptr) {
+  return integrand_cs(c, line, std::cos(alpha), std::sin(alpha), p, out, stats, exponent);
+}
+// The same, returning its Level.
+template <class Policy>
+Level level_at(const PointContext& c, const Line& line, double alpha, Policy& p, typename Policy::Value& out,
+               SpecularSkyStats& stats) {
+  Level l;
+  l.g = integrand(c, line, alpha, p, out, stats, &l.x);
+  return l;
 }
 
 // March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of `line`;
 // adds ∫ to `acc` (unweighted) and updates g_max / line_max. g_start: G at α*.
 template <class Policy>
-void march(const PointContext& c, const Line& line, double alpha_star, double g_start, int dir, double step,
-           double eps, double total, double& g_max, double& line_max, typename Policy::Value& acc, Policy& p,
+void march(const PointContext& c, const Line& line, double alpha_star, const Level& start, int dir, double step,
+           double eps, double total, double& g_max, Level& line_max, typename Policy::Value& acc, Policy& p,
            SpecularSkyStats& stats) {
   const std::span<const VisibleInterval> vis = c.view->visible(line.band);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(vis.size());
@@ -192,14 +225,15 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
     while (idx >= 0 && clamp_alpha(vis[idx].alpha0_rad) >= alpha_star) --idx;
   }
   typename Policy::Value f, cell;
-  double a = alpha_star, g_prev = g_start;
+  double a = alpha_star;
+  Level prev = start;
   double cached_half = -1, sin_d = 0, cos_d = 1;  // sin, cos of the outer GL offset half·x₃
   int quiet = 0;  // consecutive cells that met the stop test
   const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
   while (dir > 0 ? a < end : a > end) {
     const double b = dir > 0 ? std::min(a + step, end) : std::max(a - step, end);
     const double lo_cell = std::min(a, b), hi_cell = std::max(a, b);
-    double cell_g = 0;
+    Level cell_l;
     bool any = false;
     cell = typename Policy::Value{};
     while (idx >= 0 && idx < count) {
@@ -219,9 +253,10 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
         const double node_cos[3] = {cm * cos_d + sm * sin_d, cm, cm * cos_d - sm * sin_d};
         const double node_sin[3] = {sm * cos_d - cm * sin_d, sm, sm * cos_d + cm * sin_d};
         for (int n = 0; n < 3; ++n) {
-          const double g = integrand_cs(c, line, node_cos[n], node_sin[n], p, f, stats);
-          if (g > 0.0) cell += f * (half * kGl3W[n]);
-          cell_g = std::max(cell_g, g);
+          Level l;
+          l.g = integrand_cs(c, line, node_cos[n], node_sin[n], p, f, stats, &l.x);
+          if (l.g > 0.0) cell += f * (half * kGl3W[n]);
+          raise(cell_l, l);
         }
         any = true;
       }
@@ -229,20 +264,20 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
       if (dir > 0 ? i1 <= hi_cell : i0 >= lo_cell) idx += dir;
       else break;
     }
-    if (!any) cell_g = integrand(c, line, b, p, f, stats);  // wholly occluded: G decides whether to go on
+    if (!any) cell_l = level_at(c, line, b, p, f, stats);  // wholly occluded: G decides whether to go on
     acc += cell;
-    g_max = std::max(g_max, cell_g);
-    line_max = std::max(line_max, cell_g);
+    g_max = std::max(g_max, cell_l.g);
+    raise(line_max, cell_l);
     // Stop once G is negligible AND no longer rising (G at α* can sit on the rising flank: near
     // the pencil axis sin²α → 0, or off-specular peaks at grazing views) AND the cell carried
     // at most ε of what the point has gathered (at grazing views a low, wide tail under a sharp
     // peak passes the first two tests while still holding several % of the integral).
     const double mass = p.measure(cell) * line.weight;
-    const bool negligible = cell_g <= eps * g_max && cell_g <= g_prev &&
+    const bool negligible = cell_l.g <= eps * g_max && !rising(cell_l, prev) &&
                             mass <= eps * (total + p.measure(acc) * line.weight);
     quiet = negligible ? quiet + 1 : 0;
     a = b;
-    g_prev = cell_g;
+    prev = cell_l;
     if (quiet >= c.stop_after) break;
   }
 }
@@ -250,17 +285,17 @@ void march(const PointContext& c, const Line& line, double alpha_star, double g_
 // Integrates one line from its α* both ways into acc (times the line's weight); returns the
 // largest G met on the line.
 template <class Policy>
-double integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max,
-                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats, double* mass_out = nullptr) {
+Level integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max,
+                     typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats, double* mass_out = nullptr) {
   const double total = p.measure(acc);
   const double a_star = std::clamp(nearest_alpha(c.view->frame(), line.u, c.q), c.alpha_lo, c.alpha_hi);
   typename Policy::Value f_star;
-  const double g_star = integrand(c, line, a_star, p, f_star, stats);  // for the stop tests only
-  g_max = std::max(g_max, g_star);
-  double line_max = g_star;
+  const Level star = level_at(c, line, a_star, p, f_star, stats);  // for the stop tests only
+  g_max = std::max(g_max, star.g);
+  Level line_max = star;
   typename Policy::Value line_sum;
-  march(c, line, a_star, g_star, +1, step, eps, total, g_max, line_max, line_sum, p, stats);
-  march(c, line, a_star, g_star, -1, step, eps, total, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, star, +1, step, eps, total, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, star, -1, step, eps, total, g_max, line_max, line_sum, p, stats);
   acc += line_sum * line.weight;
   if (mass_out) *mass_out = p.measure(line_sum) * line.weight;
   ++stats.lines;
@@ -349,13 +384,13 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
 
   c.stop_after = std::max(1, opt.stop_after);
   double g_max = 0;
-  const double first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_step, eps, g_max, acc, p, stats);
+  const Level first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_step, eps, g_max, acc, p, stats);
   // Outward in δ: lower lines/segments, then higher ones, each until a line's largest G is
   // below ε·G_max and no longer rising from line to line.
   for (int dir : {-1, +1}) {
     Segment seg = seg_q;
     int k = k_q;
-    double prev_max = first_max;
+    Level prev_max = first_max;
     int quiet = 0;
     for (;;) {
       k += dir;
@@ -365,8 +400,8 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
         k = dir > 0 ? 0 : seg.count - 1;
       }
       double mass = 0;
-      const double line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats, &mass);
-      quiet = line_max <= eps * g_max && line_max <= prev_max && mass <= eps * p.measure(acc) ? quiet + 1 : 0;
+      const Level line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats, &mass);
+      quiet = line_max.g <= eps * g_max && !rising(line_max, prev_max) && mass <= eps * p.measure(acc) ? quiet + 1 : 0;
       if (quiet >= c.stop_after) break;
       prev_max = line_max;
     }
