@@ -82,7 +82,7 @@ class Reuse {
     done_[k] = 1;
     ++marched;
   }
-  // Pixels [xa, xb) × [ya, yb) of sample index i, corners (xa|xb, ya|yb) known exactly.
+  // Pixels [xa, xb) × [ya, yb) of sample index i; marches its corners (xa|xb, ya|yb) first.
   void refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block, std::size_t& marched, std::size_t& interpolated);
   // Every owned pixel of [xa, xb) × [ya, yb) exactly.
   void all_exact(int xa, int xb, int ya, int yb, std::size_t i, std::size_t& marched) {
