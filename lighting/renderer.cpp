@@ -9,7 +9,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "lighting/colour.h"
 #include "lighting/sky_lut.h"
@@ -17,22 +16,13 @@
 #include "lighting/specular_reuse.h"
 #include "lighting/specular_sky_colour.h"
 #include "lighting/sun_shading.h"
+#include "lighting/thread_arena.h"
 
 namespace skyband {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-template <class F>
-void in_arena(int threads, F&& f) {
-  if (threads > 0) {
-    tbb::task_arena arena(threads);
-    arena.execute(f);
-  } else {
-    f();
-  }
-}
 
 // The four shading terms of one surface sample as linear sRGB (unit: see renderer.h).
 struct ShadedRgb {
@@ -63,7 +53,7 @@ GeometryPass trace_geometry(const Scene& scene, const PinholeCamera& camera, con
   pass.sample_direction.resize(n_samples);
   const TriangleSoup& soup = scene.soup();
   const auto t0 = Clock::now();
-  in_arena(settings.threads, [&] {
+  run_with_threads(settings.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_pixels, 64), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) {
         const int row = static_cast<int>(p / static_cast<std::size_t>(pass.width));
@@ -123,7 +113,7 @@ void update_sun(GeometryPass& pass, const Scene& scene, const Vec3& sun_dir, con
     return;
   }
   tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
-  in_arena(settings.threads, [&] {
+  run_with_threads(settings.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         auto& w = workers.local();
@@ -207,7 +197,7 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   const ProjectedSkyGrid background = grid.project(xyz_weight_spectra);
 
   std::vector<ShadedRgb> shaded(pass.surfaces.size());
-  in_arena(settings.threads, [&] {
+  run_with_threads(settings.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
@@ -257,7 +247,7 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
     layer->assign(n_pixels * 3, 0.0f);
   const std::size_t spp = static_cast<std::size_t>(pass.samples);
   const double inv = 1.0 / static_cast<double>(spp);
-  in_arena(settings.threads, [&] {
+  run_with_threads(settings.threads, [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_pixels, 256), [&](const tbb::blocked_range<std::size_t>& r) {
       double xyz[ProjectedSkyGrid::kMaxChannels];
       for (std::size_t p = r.begin(); p != r.end(); ++p) {

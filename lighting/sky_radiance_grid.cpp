@@ -5,7 +5,8 @@
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
+
+#include "lighting/thread_arena.h"
 
 namespace skyband {
 
@@ -29,16 +30,6 @@ Vec3 disk_direction(double px, double py) {
   return Vec3(2.0 * px, 2.0 * py, 1.0 - q) / (1.0 + q);
 }
 
-template <class F>
-void in_arena(int threads, F&& f) {
-  if (threads > 0) {
-    tbb::task_arena arena(threads);
-    arena.execute(f);
-  } else {
-    f();
-  }
-}
-
 }  // namespace
 
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
@@ -55,7 +46,7 @@ bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, dou
 
 SkyRadianceGrid::SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads)
     : data_(static_cast<std::size_t>(kNodes) * kNodes * kSpectrumSamples) {
-  in_arena(threads, [&] {
+  run_with_threads(threads, [&] {
     tbb::parallel_for(0, kNodes, [&](int iy) {
       Spectrum l, inner;
       const double h = 2.0 / kCells;

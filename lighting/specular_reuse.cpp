@@ -6,21 +6,12 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
+
+#include "lighting/thread_arena.h"
 
 namespace skyband {
 
 namespace {
-
-template <class F>
-void in_arena(int threads, F&& f) {
-  if (threads > 0) {
-    tbb::task_arena arena(threads);
-    arena.execute(f);
-  } else {
-    f();
-  }
-}
 
 constexpr double kNormalTolerance = 1e-6;  // 1 − n₁·n₂
 constexpr double kPlaneTolerance_m = 1e-3;
@@ -53,10 +44,6 @@ bool predicts(const Xyz (&c)[4], double fx, double fy, const Xyz& actual, double
   }
   return true;
 }
-
-}  // namespace
-
-namespace {
 
 // The state of one shading call: what is known exactly, and the recursion over one block.
 class Reuse {
@@ -168,7 +155,7 @@ SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block
   while (top * 2 <= block) top *= 2;
   const bool reuse = block >= kMinBlock && tolerance > 0.0;
   if (!reuse) {
-    in_arena(threads, [&] {
+    run_with_threads(threads, [&] {
       tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
         std::size_t marched = 0;
         for (int row = rows.begin(); row != rows.end(); ++row)
@@ -184,7 +171,7 @@ SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block
   // processed by other tasks): all corners and check points any refinement of a block can use
   // on its edges (the finest, 4 × 4, checks its edge midpoints at 2-pixel spacing), so no task
   // ever marches or reads a sample that another task may write.
-  in_arena(threads, [&] {
+  run_with_threads(threads, [&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& rows) {
       std::size_t marched = 0;
       for (int row = rows.begin(); row != rows.end(); ++row)
@@ -198,7 +185,7 @@ SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block
   });
   // Pass 2: each block refines itself: it writes only its own pixels [x0, x0 + top) ×
   // [y0, y0 + top) and reads the pass-1 points on its edges.
-  in_arena(threads, [&] {
+  run_with_threads(threads, [&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, ny, 1), [&](const tbb::blocked_range<int>& brows) {
       std::size_t marched = 0, interpolated = 0;
       for (int by = brows.begin(); by != brows.end(); ++by)
