@@ -420,30 +420,27 @@ struct SpectralReflection {
   const FresnelTable* fresnel = nullptr;
 
   double eval(const Vec3& w, double v_dot_h, double k, Spectrum& out) {
+    reflected(w, v_dot_h, k, out);
+    return std::max(channel_mean(out), 0.0);
+  }
+  double measure(const Spectrum& x) const { return std::abs(channel_mean(x)); }
+  void mirror(const Vec3& q, double n_dot_v, double weight, Spectrum& out) { reflected(q, n_dot_v, weight, out); }
+
+ private:
+  // out = k·F(cos θ)·L(w).
+  void reflected(const Vec3& w, double cos_theta, double k, Spectrum& out) {
     sky(w, out);
     if (fresnel) {
       Spectrum fr;
-      fresnel->eval(v_dot_h, fr);
+      fresnel->eval(cos_theta, fr);
       out *= fr;
     }
     out *= k;
-    double mean = 0;
-    for (int i = 0; i < kSpectrumSamples; ++i) mean += out[i];
-    return std::max(mean / kSpectrumSamples, 0.0);
   }
-  double measure(const Spectrum& x) const {
-    double mean = 0;
-    for (int i = 0; i < kSpectrumSamples; ++i) mean += x[i];
-    return std::abs(mean / kSpectrumSamples);
-  }
-  void mirror(const Vec3& q, double n_dot_v, double weight, Spectrum& out) {
-    sky(q, out);
-    if (fresnel) {
-      Spectrum fr;
-      fresnel->eval(n_dot_v, fr);
-      out *= fr;
-    }
-    out *= weight;
+  static double channel_mean(const Spectrum& x) {
+    double sum = 0;
+    for (int i = 0; i < kSpectrumSamples; ++i) sum += x[i];
+    return sum / kSpectrumSamples;
   }
 };
 
