@@ -33,22 +33,10 @@ namespace {
 // Surface points of the renderer's first pass: one primary ray per pixel centre.
 std::vector<QueryPoint> camera_hits(const Scene& scene, const PinholeCamera& camera) {
   std::vector<QueryPoint> out;
-  const auto& soup = scene.soup();
   for (int row = 0; row < camera.height(); ++row) {
     for (int col = 0; col < camera.width(); ++col) {
       const Ray ray = camera.primary_ray(col + 0.5, row + 0.5);
-      const std::optional<RayHit> h = scene.intersect(ray);
-      if (!h) continue;
-      const auto& tri = soup.triangles[h->triangle];
-      const Vec3& a = soup.vertices[tri[0]];
-      const Vec3& b = soup.vertices[tri[1]];
-      const Vec3& c = soup.vertices[tri[2]];
-      Vec3 n = scene.triangle_normal(h->triangle);
-      const double len = n.norm();
-      if (!(len > 0) || !std::isfinite(len)) continue;
-      n /= len;
-      if (n.dot(ray.direction) > 0) n = -n;
-      out.push_back({a + h->u * (b - a) + h->v * (c - a), n});
+      if (const std::optional<SurfaceHit> h = scene.surface_hit(ray)) out.push_back({h->position, h->normal});
     }
   }
   return out;

@@ -165,6 +165,21 @@ bool hit_triangle(const Vec3& o, const Vec3& d, int kz, int kx, int ky, const Ve
 
 }  // namespace
 
+std::optional<SurfaceHit> Scene::surface_hit(const Ray& ray) const {
+  const std::optional<RayHit> h = intersect(ray);
+  if (!h) return std::nullopt;
+  Vec3 n = triangle_normal(h->triangle);
+  const double len = n.norm();
+  if (!(len > 0) || !std::isfinite(len)) return std::nullopt;  // zero-area: a watertight test cannot hit it; be safe
+  n /= len;
+  if (n.dot(ray.direction) > 0) n = -n;
+  const auto& tri = soup_.triangles[h->triangle];
+  const Vec3& a = soup_.vertices[tri[0]];
+  const Vec3& b = soup_.vertices[tri[1]];
+  const Vec3& c = soup_.vertices[tri[2]];
+  return SurfaceHit{a + h->u * (b - a) + h->v * (c - a), n, h->triangle};
+}
+
 std::optional<RayHit> Scene::intersect(const Ray& ray) const {
   if (nodes_.empty()) return std::nullopt;
   const Vec3& o = ray.origin;

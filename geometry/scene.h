@@ -39,6 +39,12 @@ struct RayHit {
   double u = 0, v = 0;  // barycentrics of vertices 1 and 2
 };
 
+struct SurfaceHit {
+  Vec3 position;  // metres, on the triangle
+  Vec3 normal;    // unit, facing the ray's origin
+  std::uint32_t triangle = 0;
+};
+
 class Scene {
  public:
   explicit Scene(TriangleSoup soup);
@@ -52,6 +58,10 @@ class Scene {
 
   // Closest hit along the ray (watertight ray/triangle test), or nothing.
   std::optional<RayHit> intersect(const Ray& ray) const;
+  // The closest hit as a shading point: the point on the triangle from the barycentrics (more
+  // precise than o + t·d) and the unit geometric normal turned to face the ray's origin (meshes
+  // may be inconsistently oriented). Nothing if the ray misses or hits a zero-area triangle.
+  std::optional<SurfaceHit> surface_hit(const Ray& ray) const;
 
  private:
   void build();

@@ -61,22 +61,12 @@ GeometryPass trace_geometry(const Scene& scene, const PinholeCamera& camera, con
         for (std::size_t i = 0; i < spp; ++i) {
           const Ray ray = camera.primary_ray(col + offsets[i].x(), row + offsets[i].y());
           pass.sample_direction[p * spp + i] = ray.direction;
-          const std::optional<RayHit> h = scene.intersect(ray);
+          const std::optional<SurfaceHit> h = scene.surface_hit(ray);  // normal faces the camera
           if (!h) continue;
-          const auto& tri = soup.triangles[h->triangle];
-          const Vec3& a = soup.vertices[tri[0]];
-          const Vec3& b = soup.vertices[tri[1]];
-          const Vec3& c = soup.vertices[tri[2]];
-          Vec3 n = scene.triangle_normal(h->triangle);
-          const double len = n.norm();
-          if (!(len > 0) || !std::isfinite(len)) continue;  // zero-area triangle: cannot be hit by a watertight test, be safe
-          n /= len;
-          if (n.dot(ray.direction) > 0) n = -n;  // face the camera
           Hit& out = hits[p * spp + i];
           out.hit = true;
-          // The point from barycentrics lies on the triangle to rounding (more precise than o + t·d).
-          out.s.position = a + h->u * (b - a) + h->v * (c - a);
-          out.s.normal = n;
+          out.s.position = h->position;
+          out.s.normal = h->normal;
           out.s.view_dir = -ray.direction;
           out.s.material_slot = soup.triangle_material.empty() ? 0u : soup.triangle_material[h->triangle];
           out.s.pixel = static_cast<std::uint32_t>(p);
