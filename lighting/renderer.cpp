@@ -24,6 +24,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// For each key, the index of its value among the distinct values (appended to `distinct` in
+// first-seen order).
+template <class T>
+std::vector<std::size_t> distinct_index(std::span<const T> keys, std::vector<T>& distinct) {
+  std::vector<std::size_t> index;
+  for (const T& k : keys) {
+    std::size_t i = 0;
+    while (i < distinct.size() && distinct[i] != k) ++i;
+    if (i == distinct.size()) distinct.push_back(k);
+    index.push_back(i);
+  }
+  return index;
+}
+
 // The four shading terms of one surface sample as linear sRGB (unit: see renderer.h).
 struct ShadedRgb {
   Vec3 sun_diffuse, sun_specular, sky_diffuse, sky_specular;
@@ -146,43 +160,28 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   const Spectrum& e_dn = sky.sun_direct_normal;
   const SkyRadianceGrid grid(sky.radiance, settings.threads);
   // Diffuse sky: per-band tables (seed eq. 1) built from the gridded sky, each also projected
-  // onto XYZ × the diffuse BRDF (1 − s)ρ_d/π of every diffuse material, so a sample's diffuse
+  // onto XYZ × the diffuse BRDF (1 − s)ρ_d/π of every distinct material, so a sample's diffuse
   // sky radiance integrates straight to XYZ (3 channels instead of 41).
+  std::vector<const Material*> materials;
+  const std::vector<std::size_t> slot_diffuse = distinct_index(slot_materials, materials);
   std::vector<std::vector<Spectrum>> diffuse_projections;
-  std::vector<std::size_t> slot_diffuse(slot_materials.size(), 0);
-  {
-    std::vector<const Material*> seen;
-    for (std::size_t k = 0; k < slot_materials.size(); ++k) {
-      const Material* m = slot_materials[k];
-      std::size_t i = 0;
-      while (i < seen.size() && seen[i] != m) ++i;
-      if (i == seen.size()) {
-        seen.push_back(m);
-        const Spectrum brdf = m->diffuse_brdf();
-        diffuse_projections.push_back({xyz_weights(0) * brdf, xyz_weights(1) * brdf, xyz_weights(2) * brdf});
-      }
-      slot_diffuse[k] = i;
-    }
+  for (const Material* m : materials) {
+    const Spectrum brdf = m->diffuse_brdf();
+    diffuse_projections.push_back({xyz_weights(0) * brdf, xyz_weights(1) * brdf, xyz_weights(2) * brdf});
   }
   SkyLutCache luts([&grid](const Vec3& d, Spectrum& out) { grid(d, out); }, 360, 1e-9, diffuse_projections);
-  // Specular sky in XYZ (specular_sky_colour.h): one projected sky per distinct Fresnel table.
+  // Specular sky in XYZ (specular_sky_colour.h): one projected sky per distinct Fresnel table of
+  // a specular material (slots without a specular term map to an entry left empty).
+  std::vector<const FresnelTable*> slot_tables;
+  for (const Material* m : slot_materials)
+    slot_tables.push_back(m->has_specular() ? m->specular_lobe(settings.paper_scale).fresnel : nullptr);
+  std::vector<const FresnelTable*> tables;
+  const std::vector<std::size_t> slot_specular = distinct_index(std::span<const FresnelTable* const>(slot_tables), tables);
   std::vector<std::unique_ptr<ColourSpecularSky>> specular_skies;
-  std::vector<const ColourSpecularSky*> slot_specular(slot_materials.size(), nullptr);
-  {
-    std::vector<const FresnelTable*> tables;
-    for (std::size_t k = 0; k < slot_materials.size(); ++k) {
-      const Material& m = *slot_materials[k];
-      if (!m.has_specular()) continue;
-      const FresnelTable* t = m.specular_lobe(settings.paper_scale).fresnel;
-      std::size_t i = 0;
-      while (i < tables.size() && tables[i] != t) ++i;
-      if (i == tables.size()) {
-        tables.push_back(t);
-        specular_skies.push_back(std::make_unique<ColourSpecularSky>(grid, t));
-      }
-      slot_specular[k] = specular_skies[i].get();
-    }
-  }
+  specular_skies.resize(tables.size());
+  for (std::size_t k = 0; k < slot_materials.size(); ++k)
+    if (slot_materials[k]->has_specular() && !specular_skies[slot_specular[k]])
+      specular_skies[slot_specular[k]] = std::make_unique<ColourSpecularSky>(grid, slot_tables[k]);
   const Spectrum xyz_weight_spectra[3] = {xyz_weights(0), xyz_weights(1), xyz_weights(2)};
   const ProjectedSkyGrid background = grid.project(xyz_weight_spectra);
 
@@ -219,7 +218,7 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
       [&](std::size_t k) { return material_of(k).roughness_m >= settings.specular_reuse_min_roughness; },
       [&](std::size_t k) {
         const SurfaceSample& ss = pass.surfaces[k];
-        return slot_specular[ss.material_slot]->radiance_xyz(pass.visibility.view(k), ss.view_dir,
+        return specular_skies[slot_specular[ss.material_slot]]->radiance_xyz(pass.visibility.view(k), ss.view_dir,
                                                              material_of(k).specular_lobe(settings.paper_scale),
                                                              settings.specular);
       },
