@@ -146,6 +146,15 @@ bool alpha_visible(std::span<const VisibleInterval> visible, double alpha_rad);
 // Per-point setup; false when V is at or behind the surface (nothing reflected toward V).
 bool make_context(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, PointContext& c);
 
+// The march's steps for one point (step 2 and 4 above) from the lobe's widths around Q; also
+// sets the lobe window c.alpha_lo/alpha_hi.
+struct MarchSteps {
+  double alpha_rad = 0;        // α cell width
+  double delta_rad = 0;        // δ piece width
+  double single_line_rad = 0;  // a segment at most this wide in δ is one line
+};
+MarchSteps march_steps(PointContext& c, const SpecularSkyOptions& opt);
+
 // 3-point Gauss–Legendre on [−1, 1].
 // 2-point Gauss–Legendre on [−1, 1].
 inline constexpr double kGl2X[2] = {-0.5773502691896258, 0.5773502691896258};
@@ -153,7 +162,6 @@ inline constexpr double kGl2W[2] = {1.0, 1.0};
 inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
 inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
 
-// Integrand w_s f_s L sin²α at the point (cos α, sin α) of `line` into `out`; returns its G.
 // How far into the lobe a sample is, for the stop tests: its G, and the Beckmann exponent
 // x = tan²θ_h/m², which still orders samples where G has underflowed to 0 (e^{−x} < 10⁻³⁰⁸
 // beyond x ≈ 708, i.e. θ_h > 29° for m = 0.02): a march must not take such a plateau for a
@@ -171,6 +179,8 @@ inline void raise(Level& l, const Level& o) {
   l.x = std::min(l.x, o.x);
 }
 
+// Integrand w_s f_s L sin²α at the point (cos α, sin α) of `line` into `out`; returns its G
+// (and the Beckmann exponent into *exponent when given).
 template <class Policy>
 double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p,
                     typename Policy::Value& out, SpecularSkyStats& stats, double* exponent = nullptr) {
@@ -332,49 +342,8 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
   PointContext c;
   if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) return acc;
   const BandFrame& f = view.frame();
-  // The lobe's shape around Q, as a Gaussian in the tangent plane at Q: standard deviation
-  // σ∥ = √2·m in the plane of incidence (the reflected direction turns by 2·dθ when H tilts by
-  // dθ in that plane, and the Beckmann slope spread is m/√2) and σ⊥ = (V·H)·σ∥ ≈ (N·V)·σ∥ across
-  // it (it turns by 2(V·H)·dθ there): at grazing views the lobe is a thin streak. The steps
-  // follow the widths the rules see: along a line (direction e_α at Q) the conditional width
-  // 1/√(e_αᵀΣ⁻¹e_α); across lines (e_δ) the marginal width √(e_δᵀΣe_δ), turned into δ by the
-  // line spacing sin α_Q. m_a and m_d are these widths in units of √2 (= m at normal incidence).
-  double alpha_q, delta_q;
-  f.angles_of(c.q, alpha_q, delta_q);
-  double m_a, m_d;
-  {
-    const double sig_par = lobe.roughness_m;  // (/√2 units)
-    const double sig_perp = sig_par * std::clamp(c.n_dot_v, opt.min_compression, 1.0);
-    Vec3 p = c.n.cross(c.v);
-    if (!(p.norm() > 1e-9)) p = std::abs(c.q.z()) < 0.9 ? c.q.cross(Vec3(0, 0, 1)) : c.q.cross(Vec3(1, 0, 0));
-    p.normalize();
-    const Vec3 t = p.cross(c.q).normalized();  // in the plane of incidence, ⟂ Q
-    const Vec3 u_q = std::cos(delta_q) * f.h + std::sin(delta_q) * f.z;
-    const Vec3 e_a = -std::sin(alpha_q) * f.x + std::cos(alpha_q) * u_q;
-    const Vec3 e_d = -std::sin(delta_q) * f.h + std::cos(delta_q) * f.z;
-    const double at = e_a.dot(t), ap = e_a.dot(p), dt = e_d.dot(t), dp = e_d.dot(p);
-    m_a = 1.0 / std::sqrt(at * at / (sig_par * sig_par) + ap * ap / (sig_perp * sig_perp));
-    m_d = std::sqrt(sig_par * sig_par * dt * dt + sig_perp * sig_perp * dp * dp) / std::max(std::sin(alpha_q), 1e-3);
-    // The Gaussian model is a first-order picture (the lobe bends on the sphere, sin²α and G
-    // reshape it): never step coarser than the isotropic width m·max(N·V, ½) (measured in
-    // bench_specular, where the model alone doubled the worst errors).
-    const double iso = lobe.roughness_m * std::max(c.n_dot_v, 0.5);
-    m_a = std::min(m_a, iso);
-    m_d = std::min(m_d, iso);
-  }
-  // The lobe window: every direction within R of Q has |α − α_Q| ≤ R (α is the angle from the
-  // axis x, and |∠(ω, x) − ∠(Q, x)| ≤ ∠(ω, Q)), so integrating only α ∈ [α_Q − R, α_Q + R]
-  // drops nothing of the cap ∠(ω, Q) ≤ R, outside which the Beckmann factor exp(−tan²θ_h/m²)
-  // with θ_h ≥ ∠(ω, Q)/2 in the plane of incidence is below e^{−R²/4m²} = 5·10⁻⁶ of its peak
-  // at R = 7m (across it the lobe is narrower still).
-  {
-    const double r = opt.lobe_window_per_m * lobe.roughness_m;
-    c.alpha_lo = std::max(0.0, alpha_q - r);
-    c.alpha_hi = std::min(kPi, alpha_q + r);
-  }
-  const double a_step = std::min(opt.alpha_step_per_m * m_a, opt.max_alpha_step_rad);
-  const double d_step = std::min(opt.delta_step_per_m * m_d, opt.max_delta_step_rad);
-  const double single = opt.single_line_per_m * m_d;
+  const MarchSteps steps = march_steps(c, opt);
+  const double a_step = steps.alpha_rad, d_step = steps.delta_rad, single = steps.single_line_rad;
   const double eps = opt.epsilon;
 
   // Start: the line of Q's segment nearest δ_Q.
