@@ -113,13 +113,9 @@ void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad
 }
 
 Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut) {
+  if (lut.channels() != kSpectrumSamples) throw std::logic_error("diffuse_sky_irradiance: a projected table");
   Spectrum e;
-  const std::size_t n = std::min(v.band_count(), lut.line_count());
-  for (std::size_t b = 0; b < n; ++b) {
-    const double w = v.band_weight(b);
-    for (const VisibleInterval& iv : v.visible(b))
-      lut.add_interval(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, e);
-  }
+  diffuse_sky_channels(v, lut, e.v.data());
   return e;
 }
 
