@@ -13,7 +13,6 @@ namespace skyband {
 namespace {
 
 constexpr int kNodes = SkyRadianceGrid::kCells + 1;
-static_assert(SkyRadianceGrid::kCells == 400, "ProjectedSkyGrid::kCellsPerAxis must match");
 
 // Unit direction of the point p of the unit disk (inverse stereographic projection); the rim
 // itself is lifted just above the horizon (the sky models are 0 at exactly ω_z = 0 but
@@ -72,18 +71,7 @@ SkyRadianceGrid::SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&
 }
 
 void SkyRadianceGrid::operator()(const Vec3& dir, Spectrum& out) const {
-  int ix, iy;
-  double fx, fy;
-  if (!sky_grid_cell(dir, kCells, ix, iy, fx, fy)) {
-    out = Spectrum{};
-    return;
-  }
-  const float* a = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kSpectrumSamples];
-  const float* b = a + kSpectrumSamples;                                  // ix + 1
-  const float* c = a + static_cast<std::size_t>(kNodes) * kSpectrumSamples;  // iy + 1
-  const float* d = c + kSpectrumSamples;
-  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
-  for (int k = 0; k < kSpectrumSamples; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+  sky_grid_interpolate(data_.data(), kSpectrumSamples, dir, out.v.data());
 }
 
 ProjectedSkyGrid SkyRadianceGrid::project(std::span<const Spectrum> weights) const {
@@ -109,19 +97,7 @@ ProjectedSkyGrid SkyRadianceGrid::project(std::span<const Spectrum> weights) con
 }
 
 void ProjectedSkyGrid::lookup(const Vec3& dir, double* out) const {
-  int ix, iy;
-  double fx, fy;
-  if (!sky_grid_cell(dir, SkyRadianceGrid::kCells, ix, iy, fx, fy)) {
-    for (int k = 0; k < channels_; ++k) out[k] = 0.0;
-    return;
-  }
-  const std::size_t kC = static_cast<std::size_t>(channels_);
-  const float* a = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kC];
-  const float* b = a + kC;
-  const float* c = a + static_cast<std::size_t>(kNodes) * kC;
-  const float* d = c + kC;
-  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
-  for (std::size_t k = 0; k < kC; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+  sky_grid_interpolate(data_.data(), static_cast<std::size_t>(channels_), dir, out);
 }
 
 }  // namespace skyband

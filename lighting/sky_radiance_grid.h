@@ -28,13 +28,34 @@ namespace skyband {
 
 class ProjectedSkyGrid;
 
+// Cells per axis of the stereographic grids.
+inline constexpr int kSkyGridCells = 400;
+
 // Grid coordinates of a direction: false at or below the horizon; else cell (ix, iy) and the
 // fractions (fx, fy) ∈ [0, 1] within it.
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy);
 
+// out[k], k < n: bilinear interpolation at `dir` of a grid storing n values per node
+// ([row][column][value]); zeros at or below the horizon. Inline so that a constant n unrolls.
+inline void sky_grid_interpolate(const float* data, std::size_t n, const Vec3& dir, double* out) {
+  int ix, iy;
+  double fx, fy;
+  if (!sky_grid_cell(dir, kSkyGridCells, ix, iy, fx, fy)) {
+    for (std::size_t k = 0; k < n; ++k) out[k] = 0.0;
+    return;
+  }
+  const std::size_t row = static_cast<std::size_t>(kSkyGridCells + 1) * n;
+  const float* a = data + static_cast<std::size_t>(iy) * row + static_cast<std::size_t>(ix) * n;  // (ix, iy)
+  const float* b = a + n;                                                                       // (ix + 1, iy)
+  const float* c = a + row;                                                                     // (ix, iy + 1)
+  const float* d = c + n;
+  const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  for (std::size_t k = 0; k < n; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+}
+
 class SkyRadianceGrid {
  public:
-  static constexpr int kCells = 400;
+  static constexpr int kCells = kSkyGridCells;
   // `sky(unit world direction, out)`: W·m⁻²·sr⁻¹·nm⁻¹. Evaluated at (kCells + 1)² directions,
   // in parallel (`threads` = 0: all cores).
   SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&)>& sky, int threads = 0);
@@ -55,23 +76,11 @@ class ProjectedSkyGrid {
   // The same for a compile-time channel count N == channels() (the renderer's hot loop).
   template <int N>
   void lookup_n(const Vec3& dir, double* out) const {
-    int ix, iy;
-    double fx, fy;
-    if (!sky_grid_cell(dir, kCellsPerAxis, ix, iy, fx, fy)) {
-      for (int k = 0; k < N; ++k) out[k] = 0.0;
-      return;
-    }
-    const float* a = &data_[(static_cast<std::size_t>(iy) * (kCellsPerAxis + 1) + static_cast<std::size_t>(ix)) * N];
-    const float* b = a + N;
-    const float* c = a + static_cast<std::size_t>(kCellsPerAxis + 1) * N;
-    const float* d = c + N;
-    const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
-    for (int k = 0; k < N; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+    sky_grid_interpolate(data_.data(), N, dir, out);
   }
 
  private:
   friend class SkyRadianceGrid;
-  static constexpr int kCellsPerAxis = 400;  // = SkyRadianceGrid::kCells
   int channels_ = 0;
   std::vector<float> data_;  // [row][column][channel]
 };
