@@ -280,8 +280,9 @@ BOOST_AUTO_TEST_CASE(shade_refuses_a_stale_sun) {
 // seen at 96×72, under the physical sky. Against the exact image (reuse off): every pixel's
 // specular sky is within 2 × the reuse tolerance (1%) of the largest exact value within a block's
 // reach (the check is a posteriori at five points per block, relative to the block's largest
-// value, so elsewhere the deviation can exceed the tolerance somewhat; 2× is the margin), reuse really happens on the flat ground, the other
-// layers are untouched, and the result is thread-count independent.
+// value, so elsewhere the deviation can exceed the tolerance somewhat; 2× is the margin). Reuse
+// really happens on the flat ground, the other layers are untouched, and the result is
+// thread-count independent.
 BOOST_AUTO_TEST_CASE(specular_reuse_is_close_to_exact_and_deterministic) {
   const Scene scene(ground_scene(60, true));
   CameraSpec cs;
