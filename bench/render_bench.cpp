@@ -29,6 +29,13 @@ namespace {
 double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+// Process CPU seconds (user + system, all threads): less sensitive than wall time to other
+// jobs on the shared machine.
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -71,7 +78,8 @@ int main(int argc, char** argv) {
 
   std::printf("paper building, %d triangles, %dx%d, %d sample(s)/pixel, N = %d\n", static_cast<int>(scene.soup().triangle_count()),
               width, height, samples, bands);
-  std::printf("%-28s %10s %10s %10s %10s %10s %12s\n", "image", "trace s", "visib. s", "sun s", "sky s", "shade s", "total s");
+  std::printf("%-28s %10s %10s %10s %10s %10s %12s %12s\n", "image", "trace s", "visib. s", "sun s", "sky s", "shade s", "total s",
+              "shade cpu s");
   auto t0 = std::chrono::steady_clock::now();
   GeometryPass pass = trace_geometry(scene, camera, rs);
   bool first = true;
@@ -83,14 +91,15 @@ int main(int argc, char** argv) {
     const SkyModel sky(atm, dir, SkyModelSpec{});
     const double t_sky = since(tk);
     const auto ts = std::chrono::steady_clock::now();
+    const double cpu0 = cpu_seconds();
     const RenderLayers L = shade(pass, sky, mats, rs);
-    const double t_shade = since(ts);
+    const double t_shade = since(ts), cpu_shade = cpu_seconds() - cpu0;
     if (first)
-      std::printf("%-28s %10.2f %10.2f %10.2f %10.2f %10.2f %12.2f  (first image)\n", s.name, pass.trace_seconds,
-                  pass.visibility_seconds, pass.sun_seconds, t_sky, t_shade, since(t0));
+      std::printf("%-28s %10.2f %10.2f %10.2f %10.2f %10.2f %12.2f %12.2f  (first image)\n", s.name, pass.trace_seconds,
+                  pass.visibility_seconds, pass.sun_seconds, t_sky, t_shade, since(t0), cpu_shade);
     else
-      std::printf("%-28s %10s %10s %10.2f %10.2f %10.2f %12.2f  (relit)\n", s.name, "-", "-", pass.sun_seconds, t_sky, t_shade,
-                  since(tv));
+      std::printf("%-28s %10s %10s %10.2f %10.2f %10.2f %12.2f %12.2f  (relit)\n", s.name, "-", "-", pass.sun_seconds, t_sky,
+                  t_shade, since(tv), cpu_shade);
     std::fflush(stdout);
     first = false;
     std::printf("%-28s specular sky: %zu samples marched, %zu interpolated\n", "", L.specular_exact, L.specular_interpolated);

@@ -17,6 +17,7 @@
 // with P = xyz_weights(), in W·m⁻²·sr⁻¹): the same interpolation commutes with any projection,
 // so projecting nodes first is exact.
 // Directions at or below the horizon (ω_z ≤ 0) give 0, as SkyModel::radiance_into does.
+#include <algorithm>
 #include <functional>
 #include <span>
 #include <vector>
@@ -35,15 +36,23 @@ inline constexpr int kSkyGridCells = 400;
 // fractions (fx, fy) ∈ [0, 1] within it.
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy);
 
-// out[k], k < n: bilinear interpolation at `dir` of a grid storing n values per node
-// ([row][column][value]); zeros at or below the horizon. Inline so that a constant n unrolls.
-inline void sky_grid_interpolate(const float* data, std::size_t n, const Vec3& dir, double* out) {
-  int ix, iy;
-  double fx, fy;
-  if (!sky_grid_cell(dir, kSkyGridCells, ix, iy, fx, fy)) {
-    for (std::size_t k = 0; k < n; ++k) out[k] = 0.0;
-    return;
-  }
+// The same for a direction of unit length (up to rounding): p = (ω_x, ω_y)/(1 + ω_z), no square
+// root. Inline: the specular march looks up ~10⁸ directions per image.
+inline bool sky_grid_cell_unit(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
+  if (!(dir.z() > 0.0)) return false;  // also NaN
+  const double k = 0.5 * cells / (1.0 + dir.z());
+  const double half = 0.5 * cells;
+  const double u = dir.x() * k + half, v = dir.y() * k + half;
+  ix = std::clamp(static_cast<int>(u), 0, cells - 1);
+  iy = std::clamp(static_cast<int>(v), 0, cells - 1);
+  fx = std::clamp(u - ix, 0.0, 1.0);
+  fy = std::clamp(v - iy, 0.0, 1.0);
+  return true;
+}
+
+// out[k], k < n: bilinear interpolation in cell (ix, iy) at fractions (fx, fy) of a grid
+// storing n values per node ([row][column][value]).
+inline void sky_grid_bilinear(const float* data, std::size_t n, int ix, int iy, double fx, double fy, double* out) {
   const std::size_t row = static_cast<std::size_t>(kSkyGridCells + 1) * n;
   const float* a = data + static_cast<std::size_t>(iy) * row + static_cast<std::size_t>(ix) * n;  // (ix, iy)
   const float* b = a + n;                                                                       // (ix + 1, iy)
@@ -51,6 +60,18 @@ inline void sky_grid_interpolate(const float* data, std::size_t n, const Vec3& d
   const float* d = c + n;
   const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
   for (std::size_t k = 0; k < n; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];
+}
+
+// out[k], k < n: bilinear interpolation at `dir` (any non-zero length); zeros at or below the
+// horizon. Inline so that a constant n unrolls.
+inline void sky_grid_interpolate(const float* data, std::size_t n, const Vec3& dir, double* out) {
+  int ix, iy;
+  double fx, fy;
+  if (!sky_grid_cell(dir, kSkyGridCells, ix, iy, fx, fy)) {
+    for (std::size_t k = 0; k < n; ++k) out[k] = 0.0;
+    return;
+  }
+  sky_grid_bilinear(data, n, ix, iy, fx, fy, out);
 }
 
 class SkyRadianceGrid {
@@ -77,6 +98,17 @@ class ProjectedSkyGrid {
   template <int N>
   void lookup_n(const Vec3& dir, double* out) const {
     sky_grid_interpolate(data_.data(), N, dir, out);
+  }
+  // The same for a unit `dir` (sky_grid_cell_unit): the specular march's look-up.
+  template <int N>
+  void lookup_unit_n(const Vec3& dir, double* out) const {
+    int ix, iy;
+    double fx, fy;
+    if (!sky_grid_cell_unit(dir, kSkyGridCells, ix, iy, fx, fy)) {
+      for (int k = 0; k < N; ++k) out[k] = 0.0;
+      return;
+    }
+    sky_grid_bilinear(data_.data(), N, ix, iy, fx, fy, out);
   }
 
  private:

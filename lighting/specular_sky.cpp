@@ -132,7 +132,19 @@ bool make_context(const PointVisibilityView& view, const Vec3& view_dir, const S
   c.n_dot_v = c.n.dot(c.v);
   if (!(c.n_dot_v > 0.0)) return false;
   c.q = 2.0 * c.n_dot_v * c.n - c.v;
+  c.n_dot_x = c.n.dot(view.frame().x);
+  c.v_dot_x = c.v.dot(view.frame().x);
+  c.lobe_k = lobe_constants(lobe, c.n_dot_v);
   return true;
+}
+
+LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v) {
+  LobeConstants k;
+  const double m2 = lobe.roughness_m * lobe.roughness_m;
+  k.inv_m2 = 1.0 / m2;
+  k.scale = lobe.weight * (lobe.paper_scale ? kPaperScale : 1.0) / (4.0 * kPi * m2 * n_dot_v);
+  k.n_dot_v = n_dot_v;
+  return k;
 }
 
 MarchSteps march_steps(PointContext& c, const SpecularSkyOptions& opt) {

@@ -72,6 +72,7 @@
 #include "geometry/sky_integral.h"
 #include "geometry/visibility_cache.h"
 #include "lighting/cook_torrance.h"
+#include "lighting/fast_exp.h"
 #include "lighting/spectrum.h"
 
 namespace skyband {
@@ -96,6 +97,42 @@ struct SpecularSkyStats {
 
 namespace specular_detail {
 
+// The constants of the lobe factor k(ω) = w_s·D_n(N·H)·G/(4(N·L)(N·V)) (×4 with paper_scale;
+// cook_torrance.h, beckmann.h) at one point: everything that does not depend on ω.
+struct LobeConstants {
+  double inv_m2 = 0;     // 1/m²
+  double scale = 0;      // w_s·(paper_scale ? 4 : 1)/(4·π·m²·(N·V)): D_n's 1/(π m²), f_s's 1/(4 N·V)
+  double n_dot_v = 0;
+};
+LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v);
+
+// k(ω) of SpecularLobe::factor_fast for a unit direction L = ω from its cosines N·L and V·L
+// alone (unit N, V; N·V > 0 in `k`): with H = (L + V)/|L + V| and |L + V|² = 2 + 2 V·L,
+//     N·H = (N·L + N·V)/|L + V|,   V·H = (1 + V·L)/|L + V|,
+//     D_n = e^{−x}/(π m² cos⁴θ_h),  x = tan²θ_h/m² = (1 − cos²θ_h)/(cos²θ_h·m²)   (Beckmann),
+//     G/(N·L) = min{1, 2(N·H)·min(N·V, N·L)/(V·H)}/(N·L)                          (Cook–Torrance),
+// the same formulas as cook_torrance_lobe_with with one square root and one division (the
+// reciprocal of cos²θ_h·(V·H)·(N·L) serves all three quotients). 0 where the BRDF is 0 (L or
+// V at or below the surface, L = −V, N·H ≤ 0); *exponent = x where N·H > 0 (else untouched);
+// *v_dot_h = V·H. (specular_sky_test checks it against cook_torrance_lobe.)
+inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l, double& v_dot_h,
+                          double* exponent = nullptr) {
+  if (!(n_dot_l > 0.0)) return 0.0;
+  const double s2 = 2.0 + 2.0 * v_dot_l;  // |L + V|²
+  if (!(s2 > 0.0)) return 0.0;
+  const double inv_len = 1.0 / std::sqrt(s2);
+  const double n_dot_h = (n_dot_l + k.n_dot_v) * inv_len;
+  v_dot_h = (1.0 + v_dot_l) * inv_len;
+  if (!(n_dot_h > 0.0) || !(v_dot_h > 0.0)) return 0.0;
+  const double c2 = n_dot_h * n_dot_h;
+  const double r = 1.0 / (c2 * v_dot_h * n_dot_l);
+  const double inv_c2 = r * v_dot_h * n_dot_l, inv_vh_nl = r * c2;
+  const double x = (1.0 - c2) * inv_c2 * k.inv_m2;
+  if (exponent) *exponent = x;
+  const double g_over_nl = std::min(v_dot_h, 2.0 * n_dot_h * std::min(k.n_dot_v, n_dot_l)) * inv_vh_nl;
+  return k.scale * exp_neg(x) * inv_c2 * inv_c2 * g_over_nl;
+}
+
 // One sample line: plane δ, its weight (the s-measure it represents) and the cached band whose
 // visibility it uses; u = cos δ·h + sin δ·z spans the plane with x.
 struct Line {
@@ -103,6 +140,7 @@ struct Line {
   double weight = 0;
   std::size_t band = 0;
   Vec3 u;
+  double n_dot_u = 0, v_dot_u = 0;  // the point's N·u and V·u (with_dots): N·ω, V·ω in two products
 };
 
 // Per-point constants.
@@ -110,6 +148,8 @@ struct PointContext {
   const PointVisibilityView* view = nullptr;
   Vec3 n, v, q;  // normal, unit view direction, mirror direction
   double n_dot_v = 0;
+  double n_dot_x = 0, v_dot_x = 0;  // N·x, V·x for the frame's axis x (N·x = 0: x lies in the face)
+  LobeConstants lobe_k;              // the lobe's per-point constants (lobe_factor)
   double alpha_lo = 0, alpha_hi = kPi;  // the lobe window in α (step 4)
   int stop_after = 2;                    // consecutive cells/lines below ε before stopping
   SpecularLobe lobe;
@@ -181,26 +221,28 @@ inline void raise(Level& l, const Level& o) {
 
 // Integrand w_s f_s L sin²α at the point (cos α, sin α) of `line` into `out`; returns its G
 // (and the Beckmann exponent into *exponent when given).
+// The line must carry its dot products (with_dots). ω = cos α·x + sin α·u is unit (x ⟂ u).
 template <class Policy>
 double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p,
                     typename Policy::Value& out, SpecularSkyStats& stats, double* exponent = nullptr) {
-  const BandFrame& f = c.view->frame();
-  const Vec3 w = cos_a * f.x + sin_a * line.u;
-  MicrofacetCosines mc;
-  double k = 0;
-  if (microfacet_cosines(c.n, w, c.v, mc)) {
-    k = c.lobe.factor_fast(mc) * sin_a * sin_a;
-    if (exponent && mc.n_dot_h > 0.0) {
-      const double c2 = mc.n_dot_h * mc.n_dot_h, m = c.lobe.roughness_m;
-      *exponent = (1.0 - c2) / (c2 * m * m);
-    }
-  }
+  const double n_dot_w = cos_a * c.n_dot_x + sin_a * line.n_dot_u;
+  const double v_dot_w = cos_a * c.v_dot_x + sin_a * line.v_dot_u;
+  double v_dot_h = 0;
+  const double k = lobe_factor(c.lobe_k, n_dot_w, v_dot_w, v_dot_h, exponent) * sin_a * sin_a;
   if (!(k > 0.0)) {
     out = typename Policy::Value{};
     return 0.0;
   }
   ++stats.radiance_evals;
-  return p.eval(w, mc.v_dot_h, k, out);
+  const BandFrame& f = c.view->frame();
+  return p.eval(cos_a * f.x + sin_a * line.u, v_dot_h, k, out);
+}
+
+// The line with the point's N·u and V·u filled in (integrand_cs needs them).
+inline Line with_dots(const PointContext& c, Line line) {
+  line.n_dot_u = c.n.dot(line.u);
+  line.v_dot_u = c.v.dot(line.u);
+  return line;
 }
 
 // The same at angle α.
@@ -237,11 +279,21 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Lev
   typename Policy::Value f, cell;
   double a = alpha_star;
   Level prev = start;
-  double cached_half = -1, sin_d = 0, cos_d = 1;  // sin, cos of the outer GL offset half·x₃
+  // The three nodes of a piece, mid − d, mid, mid + d (d = half·x₃), by angle addition from
+  // (cos, sin) of mid and of d. Whole cells [α* + j·step, α* + (j + 1)·step] (in the march
+  // direction) share d, and their midpoints follow each other by a rotation through the step:
+  // no sin/cos per whole cell (the recurrence's rounding grows by ~10⁻¹⁶ per cell, far below
+  // anything the quadrature resolves). Cut pieces and the last, shortened cell take sin/cos.
+  const double full_half = 0.5 * step;
+  const double full_sin_d = std::sin(full_half * kGl3X[2]), full_cos_d = std::cos(full_half * kGl3X[2]);
+  const double rot_cos = std::cos(step), rot_sin = dir * std::sin(step);
+  double full_cm = std::cos(alpha_star + dir * full_half), full_sm = std::sin(alpha_star + dir * full_half);
   int quiet = 0;  // consecutive cells that met the stop test
   const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
-  while (dir > 0 ? a < end : a > end) {
-    const double b = dir > 0 ? std::min(a + step, end) : std::max(a - step, end);
+  for (int j = 0; dir > 0 ? a < end : a > end; ++j) {
+    const double a_full = alpha_star + dir * (j + 1) * step;  // this cell's far end if whole
+    const bool whole = dir > 0 ? a_full <= end : a_full >= end;
+    const double b = whole ? a_full : end;
     const double lo_cell = std::min(a, b), hi_cell = std::max(a, b);
     Level cell_l;
     bool any = false;
@@ -251,15 +303,21 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Lev
       if (dir > 0 ? i0 >= hi_cell : i1 <= lo_cell) break;  // next interval starts beyond this cell
       const double lo = std::max(lo_cell, i0), hi = std::min(hi_cell, i1);
       if (hi > lo) {
-        const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-        // The three nodes mid − d, mid, mid + d by angle addition: one sin/cos pair per piece
-        // (and one per distinct width; full cells share it).
-        if (half != cached_half) {
-          cached_half = half;
+        double half, sin_d, cos_d, sm, cm;
+        if (whole && lo == lo_cell && hi == hi_cell) {
+          half = full_half;
+          sin_d = full_sin_d;
+          cos_d = full_cos_d;
+          sm = full_sm;
+          cm = full_cm;
+        } else {
+          const double mid = 0.5 * (lo + hi);
+          half = 0.5 * (hi - lo);
           sin_d = std::sin(half * kGl3X[2]);
           cos_d = std::cos(half * kGl3X[2]);
+          sm = std::sin(mid);
+          cm = std::cos(mid);
         }
-        const double sm = std::sin(mid), cm = std::cos(mid);
         const double node_cos[3] = {cm * cos_d + sm * sin_d, cm, cm * cos_d - sm * sin_d};
         const double node_sin[3] = {sm * cos_d - cm * sin_d, sm, sm * cos_d + cm * sin_d};
         for (int n = 0; n < 3; ++n) {
@@ -289,14 +347,18 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Lev
     a = b;
     prev = cell_l;
     if (quiet >= c.stop_after) break;
+    const double next_cm = full_cm * rot_cos - full_sm * rot_sin;
+    full_sm = full_sm * rot_cos + full_cm * rot_sin;
+    full_cm = next_cm;
   }
 }
 
 // Integrates one line from its α* both ways into acc (times the line's weight); returns the
 // largest G met on the line.
 template <class Policy>
-Level integrate_line(const PointContext& c, const Line& line, double step, double eps, double& g_max,
+Level integrate_line(const PointContext& c, const Line& plain_line, double step, double eps, double& g_max,
                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats, double* mass_out = nullptr) {
+  const Line line = with_dots(c, plain_line);
   const double total = p.measure(acc);
   const double a_star = std::clamp(nearest_alpha(c.view->frame(), line.u, c.q), c.alpha_lo, c.alpha_hi);
   typename Policy::Value f_star;
@@ -457,6 +519,7 @@ Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& vie
         line.delta_rad = d0 + (pc + 0.5) * hd + 0.5 * hd * kGl3X[gd];
         line.u = std::cos(line.delta_rad) * f.h + std::sin(line.delta_rad) * f.z;
         line.weight = 0.5 * hd * kGl3W[gd] * std::cos(line.delta_rad - f.beta_rad);
+        line = with_dots(c, line);
         Spectrum line_sum;
         for (const VisibleInterval& iv : view.visible(b)) {
           const double a0 = clamp_alpha(iv.alpha0_rad), a1 = clamp_alpha(iv.alpha1_rad);

@@ -54,9 +54,10 @@ class ColourSpecularSky {
   struct Policy {
     using Value = ColourChannels<3 * R>;
     const ColourSpecularSky* self;
+    // w: unit (the march's directions are).
     void weighted(const Vec3& w, double cos_theta, double k, Value& out) const {
       double l[3 * R];
-      self->grid_.template lookup_n<3 * R>(w, l);
+      self->grid_.template lookup_unit_n<3 * R>(w, l);
       double u[FresnelFactors::kMaxRank] = {1.0, 1.0, 1.0, 1.0};
       if (self->factors_) self->factors_->u(cos_theta, u);
       for (int c = 0; c < 3; ++c)
