@@ -110,10 +110,34 @@ double s_of_direction(const BandFrame& f, const Vec3& q) {
   return std::clamp(std::sin(delta - f.beta_rad), f.s_min, f.s_max);
 }
 
-double nearest_alpha(const BandFrame& f, const Vec3& u, const Vec3& q) {
-  const double a = std::atan2(q.dot(u), q.dot(f.x));
-  if (a >= 0.0) return std::min(a, kPi);
-  return a > -kPi / 2 ? 0.0 : kPi;  // q behind the half-plane: the nearer end of the semicircle
+double nearest_alpha(const BandFrame& f, const Vec3& u, const Vec3& q, double& cos_a, double& sin_a) {
+  const double qu = q.dot(u), qx = q.dot(f.x);
+  const double a = std::atan2(qu, qx);
+  const double r = std::hypot(qu, qx);
+  if (a >= 0.0 && r > 0.0) {  // atan2 ≤ π
+    cos_a = qx / r;
+    sin_a = qu / r;
+    return a;
+  }
+  // q behind the half-plane: the nearer end of the semicircle (q along the plane's normal,
+  // r = 0: atan2 gives 0).
+  const double end = a >= 0.0 || a > -kPi / 2 ? 0.0 : kPi;
+  cos_a = end == 0.0 ? 1.0 : -1.0;
+  sin_a = 0.0;
+  return end;
+}
+
+AlphaCells alpha_cells(double step_rad) {
+  AlphaCells c;
+  c.step = step_rad;
+  c.half = 0.5 * step_rad;
+  c.cos_half = std::cos(c.half);
+  c.sin_half = std::sin(c.half);
+  c.cos_d = std::cos(c.half * kGl3X[2]);
+  c.sin_d = std::sin(c.half * kGl3X[2]);
+  c.cos_step = std::cos(step_rad);
+  c.sin_step = std::sin(step_rad);
+  return c;
 }
 
 bool alpha_visible(std::span<const VisibleInterval> visible, double alpha_rad) {

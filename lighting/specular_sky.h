@@ -179,8 +179,9 @@ int nearest_line(const Segment& s, double delta_rad);
 std::size_t band_of_s(const PointVisibilityView& v, double s);
 // Weight coordinate s = sin(δ − β) of direction q, clamped to the face's sky range.
 double s_of_direction(const BandFrame& f, const Vec3& q);
-// The point of the line (x, u) nearest q: α* = atan2(q·u, q·x), clamped to [0, π].
-double nearest_alpha(const BandFrame& f, const Vec3& u, const Vec3& q);
+// The point of the line (x, u) nearest q: α* = atan2(q·u, q·x), clamped to [0, π]; also its
+// cos α*, sin α* (from q·x, q·u without more trigonometry).
+double nearest_alpha(const BandFrame& f, const Vec3& u, const Vec3& q, double& cos_a, double& sin_a);
 // Whether α lies in one of the sorted visible intervals.
 bool alpha_visible(std::span<const VisibleInterval> visible, double alpha_rad);
 // Per-point setup; false when V is at or behind the surface (nothing reflected toward V).
@@ -194,6 +195,17 @@ struct MarchSteps {
   double single_line_rad = 0;  // a segment at most this wide in δ is one line
 };
 MarchSteps march_steps(PointContext& c, const SpecularSkyOptions& opt);
+
+// The α cell of a point and the trigonometry every line's march shares: whole cells are
+// [α* + j·step, α* + (j + 1)·step] on every line, so their 3 nodes' offsets from the midpoint
+// (±d, d = (step/2)·x₃) and the rotation from one midpoint to the next are per-point constants.
+struct AlphaCells {
+  double step = 0, half = 0;
+  double cos_half = 1, sin_half = 0;  // of step/2
+  double cos_d = 1, sin_d = 0;        // of d
+  double cos_step = 1, sin_step = 0;  // of step
+};
+AlphaCells alpha_cells(double step_rad);
 
 // 3-point Gauss–Legendre on [−1, 1].
 // 2-point Gauss–Legendre on [−1, 1].
@@ -263,9 +275,10 @@ Level level_at(const PointContext& c, const Line& line, double alpha, Policy& p,
 // March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of `line`;
 // adds ∫ to `acc` (unweighted) and updates g_max / line_max. g_start: G at α*.
 template <class Policy>
-void march(const PointContext& c, const Line& line, double alpha_star, const Level& start, int dir, double step,
-           double eps, double total, double& g_max, Level& line_max, typename Policy::Value& acc, Policy& p,
-           SpecularSkyStats& stats) {
+void march(const PointContext& c, const Line& line, double alpha_star, double cos_star, double sin_star,
+           const Level& start, int dir, const AlphaCells& cells, double eps, double total, double& g_max,
+           Level& line_max, typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats) {
+  const double step = cells.step;
   const std::span<const VisibleInterval> vis = c.view->visible(line.band);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(vis.size());
   // Interval cursor: + direction, first interval ending after α*; − direction, last starting before.
@@ -284,10 +297,11 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Lev
   // direction) share d, and their midpoints follow each other by a rotation through the step:
   // no sin/cos per whole cell (the recurrence's rounding grows by ~10⁻¹⁶ per cell, far below
   // anything the quadrature resolves). Cut pieces and the last, shortened cell take sin/cos.
-  const double full_half = 0.5 * step;
-  const double full_sin_d = std::sin(full_half * kGl3X[2]), full_cos_d = std::cos(full_half * kGl3X[2]);
-  const double rot_cos = std::cos(step), rot_sin = dir * std::sin(step);
-  double full_cm = std::cos(alpha_star + dir * full_half), full_sm = std::sin(alpha_star + dir * full_half);
+  const double full_half = cells.half, full_sin_d = cells.sin_d, full_cos_d = cells.cos_d;
+  const double rot_cos = cells.cos_step, rot_sin = dir * cells.sin_step;
+  const double half_sin = dir * cells.sin_half;
+  double full_cm = cos_star * cells.cos_half - sin_star * half_sin;  // cos, sin of α* + dir·step/2
+  double full_sm = sin_star * cells.cos_half + cos_star * half_sin;
   int quiet = 0;  // consecutive cells that met the stop test
   const double end = dir > 0 ? c.alpha_hi : c.alpha_lo;
   for (int j = 0; dir > 0 ? a < end : a > end; ++j) {
@@ -356,18 +370,25 @@ void march(const PointContext& c, const Line& line, double alpha_star, const Lev
 // Integrates one line from its α* both ways into acc (times the line's weight); returns the
 // largest G met on the line.
 template <class Policy>
-Level integrate_line(const PointContext& c, const Line& plain_line, double step, double eps, double& g_max,
+Level integrate_line(const PointContext& c, const Line& plain_line, const AlphaCells& cells, double eps, double& g_max,
                      typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats, double* mass_out = nullptr) {
   const Line line = with_dots(c, plain_line);
   const double total = p.measure(acc);
-  const double a_star = std::clamp(nearest_alpha(c.view->frame(), line.u, c.q), c.alpha_lo, c.alpha_hi);
+  double cos_star, sin_star;
+  const double nearest = nearest_alpha(c.view->frame(), line.u, c.q, cos_star, sin_star);
+  const double a_star = std::clamp(nearest, c.alpha_lo, c.alpha_hi);
+  if (a_star != nearest) {
+    cos_star = std::cos(a_star);
+    sin_star = std::sin(a_star);
+  }
   typename Policy::Value f_star;
-  const Level star = level_at(c, line, a_star, p, f_star, stats);  // for the stop tests only
+  Level star;  // for the stop tests only
+  star.g = integrand_cs(c, line, cos_star, sin_star, p, f_star, stats, &star.x);
   g_max = std::max(g_max, star.g);
   Level line_max = star;
   typename Policy::Value line_sum;
-  march(c, line, a_star, star, +1, step, eps, total, g_max, line_max, line_sum, p, stats);
-  march(c, line, a_star, star, -1, step, eps, total, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, cos_star, sin_star, star, +1, cells, eps, total, g_max, line_max, line_sum, p, stats);
+  march(c, line, a_star, cos_star, sin_star, star, -1, cells, eps, total, g_max, line_max, line_sum, p, stats);
   acc += line_sum * line.weight;
   if (mass_out) *mass_out = p.measure(line_sum) * line.weight;
   ++stats.lines;
@@ -405,7 +426,8 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
   if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) return acc;
   const BandFrame& f = view.frame();
   const MarchSteps steps = march_steps(c, opt);
-  const double a_step = steps.alpha_rad, d_step = steps.delta_rad, single = steps.single_line_rad;
+  const AlphaCells a_cells = alpha_cells(steps.alpha_rad);
+  const double d_step = steps.delta_rad, single = steps.single_line_rad;
   const double eps = opt.epsilon;
 
   // Start: the line of Q's segment nearest δ_Q.
@@ -415,7 +437,7 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
 
   c.stop_after = std::max(1, opt.stop_after);
   double g_max = 0;
-  const Level first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_step, eps, g_max, acc, p, stats);
+  const Level first_max = integrate_line(c, segment_line(view, seg_q, k_q), a_cells, eps, g_max, acc, p, stats);
   // Outward in δ: lower lines/segments, then higher ones, each until a line's largest G is
   // below ε·G_max and no longer rising from line to line.
   for (int dir : {-1, +1}) {
@@ -431,7 +453,7 @@ typename Policy::Value specular_sky_integral(const PointVisibilityView& view, co
         k = dir > 0 ? 0 : seg.count - 1;
       }
       double mass = 0;
-      const Level line_max = integrate_line(c, segment_line(view, seg, k), a_step, eps, g_max, acc, p, stats, &mass);
+      const Level line_max = integrate_line(c, segment_line(view, seg, k), a_cells, eps, g_max, acc, p, stats, &mass);
       quiet = line_max.g <= eps * g_max && !rising(line_max, prev_max) && mass <= eps * p.measure(acc) ? quiet + 1 : 0;
       if (quiet >= c.stop_after) break;
       prev_max = line_max;
