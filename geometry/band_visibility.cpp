@@ -289,7 +289,7 @@ struct BandVisibility::Impl {
   // Conservative α-range (pseudo-angle units) of a local box [lx]×[lh]×[lz] seen along any sample
   // line, clipped to the part outside the axis tails. False if nothing is left.
   bool alpha_range(double lx_lo, double lx_hi, double lh_lo, double lh_hi, double lz_lo, double lz_hi,
-                   double& alo, double& ahi) const {
+                   double& alo, double& ahi, double* raw_lo = nullptr, double* raw_hi = nullptr) const {
     // ρ is the distance to the axis (the b coordinate of a point on its own sample line).
     const double zl = std::max(lz_lo, 0.0);
     const double dh = lh_lo > 0 ? lh_lo : (lh_hi < 0 ? -lh_hi : 0.0);
@@ -300,6 +300,8 @@ struct BandVisibility::Impl {
     // bounds are widened by far more than their rounding (they only cull).
     alo = pseudo_angle(lx_hi, lx_hi >= 0 ? rho_min : rho_max) - 1e-12;
     ahi = pseudo_angle(lx_lo, lx_lo >= 0 ? rho_max : rho_min) + 1e-12;
+    if (raw_lo) *raw_lo = alo;
+    if (raw_hi) *raw_hi = ahi;
     alo = std::max(alo, tail_p);
     ahi = std::min(ahi, 2.0 - tail_p);
     return alo < ahi;
@@ -431,36 +433,8 @@ struct BandVisibility::Impl {
         if (exact_orientation(v0, v1, v2, p) == 0) return;
         edge_on_checked = true;
       }
-      double val[3];
-      int sg[3];
-      for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
-      // The triangle crosses the plane only with vertices strictly on both sides; touching it
-      // at a vertex or along an edge hides nothing that the neighbours do not (docs/geometry.md).
-      if (!((sg[0] > 0 || sg[1] > 0 || sg[2] > 0) && (sg[0] < 0 || sg[1] < 0 || sg[2] < 0))) continue;
       double ea[2], eb[2];
-      int n = 0;
-      for (int k = 0; k < 3 && n < 2; ++k) {
-        if (sg[k] == 0) {
-          ea[n] = L[k].x();
-          eb[n] = L[k].y() * pl.cosd + L[k].z() * pl.sind;
-          ++n;
-        }
-      }
-      for (int k = 0; k < 3 && n < 2; ++k) {
-        const int k2 = (k + 1) % 3;
-        if (sg[k] * sg[k2] >= 0) continue;
-        // Canonical order (by global vertex id): both triangles sharing this edge compute the
-        // bit-identical crossing point.
-        int a = k, b = k2;
-        if (g[b] < g[a]) std::swap(a, b);
-        double t = val[a] / (val[a] - val[b]);
-        t = std::clamp(t, 0.0, 1.0);
-        const Vec3 q = L[a] + t * (L[b] - L[a]);
-        ea[n] = q.x();
-        eb[n] = q.y() * pl.cosd + q.z() * pl.sind;
-        ++n;
-      }
-      if (n < 2) continue;
+      if (!crossing_segment(pl, d, L, g, ea, eb)) continue;
       if (add_segment(occluded, ea[0], eb[0], ea[1], eb[1])) {
         contributed = true;
         blocks[j / kBlock].dirty = true;
@@ -480,8 +454,51 @@ struct BandVisibility::Impl {
     }
   }
 
+  // The section of a triangle (vertex offsets d from the point, L = the same in the local frame,
+  // global vertex ids g) by the plane: its two in-plane end points (a along the axis, b across
+  // it). False unless the triangle crosses the plane, i.e. has vertices strictly on both sides
+  // (exact signs); touching it at a vertex or along an edge hides nothing the neighbours do not
+  // (docs/geometry.md).
+  static bool crossing_segment(const ActivePlane& pl, const Vec3 d[3], const Vec3 L[3], const std::uint32_t g[3],
+                               double ea[2], double eb[2]) {
+    double val[3];
+    int sg[3];
+    for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
+    if (!((sg[0] > 0 || sg[1] > 0 || sg[2] > 0) && (sg[0] < 0 || sg[1] < 0 || sg[2] < 0))) return false;
+    int n = 0;
+    for (int k = 0; k < 3 && n < 2; ++k) {
+      if (sg[k] == 0) {
+        ea[n] = L[k].x();
+        eb[n] = L[k].y() * pl.cosd + L[k].z() * pl.sind;
+        ++n;
+      }
+    }
+    for (int k = 0; k < 3 && n < 2; ++k) {
+      const int k2 = (k + 1) % 3;
+      if (sg[k] * sg[k2] >= 0) continue;
+      // Canonical order (by global vertex id): both triangles sharing this edge compute the
+      // bit-identical crossing point.
+      int a = k, b = k2;
+      if (g[b] < g[a]) std::swap(a, b);
+      double t = val[a] / (val[a] - val[b]);
+      t = std::clamp(t, 0.0, 1.0);
+      const Vec3 q = L[a] + t * (L[b] - L[a]);
+      ea[n] = q.x();
+      eb[n] = q.y() * pl.cosd + q.z() * pl.sind;
+      ++n;
+    }
+    return n == 2;
+  }
+
   // The in-plane segment (a, b) → occluded pseudo-angle span, clipped to the sky side b ≥ 0.
   static bool add_segment(std::vector<Span>& occluded, double a0, double b0, double a1, double b1) {
+    double lo, hi;
+    return segment_span(a0, b0, a1, b1, lo, hi) && insert_span(occluded, lo, hi);
+  }
+
+  // The pseudo-angle span [lo, hi] (hi > lo) that the in-plane segment (a, b) hides, clipped to
+  // the sky side b ≥ 0; false if it hides nothing.
+  static bool segment_span(double a0, double b0, double a1, double b1, double& lo, double& hi) {
     if (b0 <= 0 && b1 <= 0) return false;
     double p0, p1;
     if (b0 < 0 || b1 < 0) {
@@ -502,8 +519,9 @@ struct BandVisibility::Impl {
       p0 = pseudo_angle(a0, b0);
       p1 = pseudo_angle(a1, b1);
     }
-    const double lo = std::min(p0, p1), hi = std::max(p0, p1);
-    return hi > lo && insert_span(occluded, lo, hi);
+    lo = std::min(p0, p1);
+    hi = std::max(p0, p1);
+    return hi > lo;
   }
 
   // The line's visible α-intervals in radians (the gaps between occluded spans, each end
@@ -746,6 +764,72 @@ struct BandVisibility::Impl {
     return true;
   }
 
+  // Is pseudo-angle pa of plane 0's line hidden? The union the full pass would build contains pa
+  // exactly when one inserted span does (closed spans), so this tests the same triangles with
+  // the same predicates and constructions as process_triangle/add_segment, culling nodes and
+  // triangles whose α-range cannot contain pa, and stops at the first span that contains it.
+  bool plane_blocked_at(double pa) {
+    const auto& nodes = scene.bvh_nodes();
+    if (nodes.empty()) return false;
+    const Plane& pl0 = planes[0];
+    const ActivePlane pl{pl0.m, pl0.cosd, pl0.sind, nullptr};
+    const double cb = std::cos(frame.beta_rad), sb = std::sin(frame.beta_rad);
+    constexpr double kMargin = 1e-9;  // as plane_range
+    const auto& soup = scene.soup();
+    const auto& order = scene.bvh_triangle_order();
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const BvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node.box.hi.z() <= p.z()) continue;
+      const Vec3 c = local_from_world * (node.box.centre() - p);
+      const Vec3 e = abs_local_from_world * (0.5 * (node.box.hi - node.box.lo));
+      const double lx_lo = c.x() - e.x(), lx_hi = c.x() + e.x();
+      const double lh_lo = c.y() - e.y(), lh_hi = c.y() + e.y();
+      const double lz_lo = c.z() - e.z(), lz_hi = c.z() + e.z();
+      const double front = cb * (cb >= 0 ? lh_hi : lh_lo) + sb * (sb >= 0 ? lz_hi : lz_lo);
+      if (front < -1e-7) continue;
+      double plo, phi, alo, ahi, rlo, rhi;
+      if (!pencil_span(lh_lo, lh_hi, lz_lo, lz_hi, plo, phi)) continue;
+      if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
+      if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi, &rlo, &rhi)) continue;
+      if (pa < rlo || pa > rhi) continue;
+      if (node.count == 0) {
+        const std::uint32_t l = node.first, r = node.first + 1;
+        const bool left_first = (nodes[l].box.centre() - p).squaredNorm() < (nodes[r].box.centre() - p).squaredNorm();
+        stack.push_back(left_first ? r : l);
+        stack.push_back(left_first ? l : r);
+        continue;
+      }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const auto& tri = soup.triangles[order[i]];
+        const Vec3& v0 = soup.vertices[tri[0]];
+        const Vec3& v1 = soup.vertices[tri[1]];
+        const Vec3& v2 = soup.vertices[tri[2]];
+        if (v0.z() <= p.z() && v1.z() <= p.z() && v2.z() <= p.z()) continue;
+        const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
+        Vec3 L[3];
+        for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
+        auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
+        auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
+        const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
+        const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
+        if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) continue;
+        if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
+        const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
+        if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi, &rlo, &rhi)) continue;
+        if (pa < rlo || pa > rhi) continue;
+        if (exact_orientation(v0, v1, v2, p) == 0) continue;
+        const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
+        double ea[2], eb[2], lo, hi;
+        if (!crossing_segment(pl, d, L, g, ea, eb)) continue;
+        if (segment_span(ea[0], eb[0], ea[1], eb[1], lo, hi) && lo <= pa && pa <= hi) return true;
+      }
+    }
+    return false;
+  }
+
   void single_plane(const QueryPoint& q, double delta) {
     begin_point(q);
     const double s = std::sin(delta - frame.beta_rad);
@@ -771,11 +855,16 @@ bool BandVisibility::direction_visible(const QueryPoint& q, const Vec3& directio
   if (direction.dot(frame.normal) <= 0 || direction.z() < 0) return false;
   double alpha, delta;
   frame.angles_of(direction, alpha, delta);
-  impl_->single_plane(q, delta);
   const double pa = pseudo_angle(std::cos(alpha), std::sin(alpha));
-  for (const Span& s : impl_->planes[0].occluded)
-    if (s.lo <= pa && pa <= s.hi) return false;
-  return true;
+  if (!impl_->opt.accelerate) {  // the reference: the whole line, then the look-up
+    impl_->single_plane(q, delta);
+    for (const Span& s : impl_->planes[0].occluded)
+      if (s.lo <= pa && pa <= s.hi) return false;
+    return true;
+  }
+  impl_->begin_point(q);
+  impl_->add_plane(std::sin(delta - impl_->frame.beta_rad), delta);
+  return !impl_->plane_blocked_at(pa);
 }
 
 std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle_tests; }

@@ -109,3 +109,43 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
     }
   }
 }
+
+// The sun's shadow test stops at the first triangle hiding the direction (any-hit) instead of
+// building the sun plane's whole occluded list: it must decide exactly as the full line does
+// (the naive reference: every triangle, then the look-up), also for directions aimed at box
+// corners and edge midpoints, where spans of neighbouring faces touch.
+BOOST_AUTO_TEST_CASE(shadow_test_equals_full_line) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  int hidden = 0, open = 0;
+  for (int scene_id = 0; scene_id < 4; ++scene_id) {
+    TriangleSoup s;
+    std::vector<Vec3> corners;
+    for (int b = 0; b < 40; ++b) {
+      const Vec3 lo(u(rng) * 100, u(rng) * 100, 0);
+      const Vec3 hi = lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng));
+      append_box(s, lo, hi);
+      corners.push_back(hi);
+      corners.push_back(Vec3(lo.x(), hi.y(), hi.z()));
+      corners.push_back(Vec3(0.5 * (lo.x() + hi.x()), lo.y(), hi.z()));  // a roof edge's midpoint
+    }
+    const Scene scene(s);
+    VisibilityOptions fast, naive;
+    naive.accelerate = false;
+    BandVisibility a(scene, fast), b(scene, naive);
+    for (int i = 0; i < 150; ++i) {
+      const QueryPoint q{Vec3(u(rng) * 100, u(rng) * 100, u(rng) * 5),
+                         Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng)).normalized()};
+      Vec3 dir = i % 2 ? Vec3(u(rng) - 0.5, u(rng) - 0.5, 0.05 + u(rng)).normalized()
+                       : (corners[i % corners.size()] - q.position).normalized();
+      if (dir.dot(q.normal) <= 0) dir = -dir;
+      if (dir.z() < 0) continue;
+      const bool va = a.direction_visible(q, dir), vb = b.direction_visible(q, dir);
+      BOOST_TEST(va == vb);
+      (vb ? open : hidden) += 1;
+    }
+  }
+  // Both outcomes must be exercised for the comparison to mean anything.
+  BOOST_TEST(hidden > 50);
+  BOOST_TEST(open > 50);
+}
