@@ -48,7 +48,7 @@ struct Set {
 };
 
 struct Config {
-  const char* name;
+  std::string name;
   int bands;
   double tol;
 };
@@ -67,7 +67,7 @@ void profile(const Scene& scene, const std::vector<Set>& sets, const std::vector
       for (std::size_t i = 0; i < c.size(); ++i) ref.push_back(sky_view_factor(c.view(i)));
     }
     for (const Config& c : configs) {
-      if (!only.empty() && std::string(c.name).find(only) == std::string::npos) continue;
+      if (!only.empty() && c.name.find(only) == std::string::npos) continue;
       VisibilityOptions opt;
       opt.bands = c.bands;
       opt.tolerance = c.tol;
@@ -97,7 +97,7 @@ void profile(const Scene& scene, const std::vector<Set>& sets, const std::vector
         }
       }
       const double n = double(set.pts.size());
-      std::printf("%-8s %-28s %10.0f %8.1f %8.1f %10.1f %9.0f %8.4f %9.2e %9.2e %08x\n", set.name, c.name, n / s, planes / n,
+      std::printf("%-8s %-28s %10.0f %8.1f %8.1f %10.1f %9.0f %8.4f %9.2e %9.2e %08x\n", set.name, c.name.c_str(), n / s, planes / n,
                   double(cache.bands().size()) / n, tests / n, cache.bytes_per_point(), svf / n, max_err, sum_err / n,
                   static_cast<unsigned>(hash >> 32));
     }
@@ -120,12 +120,29 @@ int main(int argc, char** argv) {
   app.add_option("--height", height, "paper: image height (pixels)")->check(CLI::Range(1, 16384));
   app.add_option("--only", only, "run only the configurations whose name contains this text");
   app.add_flag("--no-reference", no_reference, "skip the 4096-band reference (no error columns)");
+  std::vector<std::string> extra;
+  app.add_option("--config", extra, "extra configuration BANDS,TOLERANCE (e.g. 64,1e-3; tolerance 0 = fixed bands); repeatable");
   CLI11_PARSE(app, argc, argv);
-  const std::vector<Config> configs = {{"N=32 fixed", 32, 0},        {"N=64 fixed", 64, 0},
+  std::vector<Config> configs = {{"N=32 fixed", 32, 0},        {"N=64 fixed", 64, 0},
                                        {"N=256 fixed", 256, 0},      {"default (N=32, tol 5e-4)", 32, 5e-4},
                                        {"N=32, tol 2.5e-4", 32, 2.5e-4}, {"N=32, tol 1e-3", 32, 1e-3},
                                        {"N=16, tol 2.5e-4", 16, 2.5e-4}, {"N=32, tol 1e-4", 32, 1e-4},
                                        {"N=16, tol 1e-3", 16, 1e-3}, {"N=16, tol 2e-3", 16, 2e-3}};
+  for (const std::string& e : extra) {
+    const std::size_t comma = e.find(',');
+    int bands = 0;
+    double tol = -1;
+    try {
+      bands = std::stoi(e.substr(0, comma));
+      tol = comma == std::string::npos ? 0.0 : std::stod(e.substr(comma + 1));
+    } catch (const std::exception&) {
+    }
+    if (bands < 1 || !(tol >= 0)) {
+      std::fprintf(stderr, "--config %s: expected BANDS,TOLERANCE with BANDS >= 1 and TOLERANCE >= 0\n", e.c_str());
+      return 2;
+    }
+    configs.push_back({"custom N=" + std::to_string(bands) + (tol > 0 ? ", tol " + e.substr(comma + 1) : " fixed"), bands, tol});
+  }
   if (scene_name == "paper") {
     cli::PaperBuilding pb = cli::make_paper_building();
     pb.camera.width = width;
