@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <string>
 
@@ -125,8 +126,42 @@ void AtmosphereParams::validate() const {
   check_range("ground_albedo", ground_albedo, 0.0, 1.0);
 }
 
+namespace {
+
+bool same_params(const AtmosphereParams& a, const AtmosphereParams& b) {
+  return a.aod550 == b.aod550 && a.angstrom_alpha == b.angstrom_alpha && a.ozone_du == b.ozone_du &&
+         a.ground_elevation_m == b.ground_elevation_m && a.aerosol_scale_height_m == b.aerosol_scale_height_m &&
+         a.aerosol_single_scattering_albedo == b.aerosol_single_scattering_albedo &&
+         a.aerosol_asymmetry_g == b.aerosol_asymmetry_g && a.ground_albedo == b.ground_albedo;
+}
+
+}  // namespace
+
+// The multiple-scattering table of the last few parameter sets, process-wide: it depends only on
+// the parameters (not on the sun), takes ~0.2 s to build, and every SkyModel (one per sun
+// position: each relit figure) builds its own Atmosphere. Whichever Atmosphere first needs the
+// table builds it (call_once); all equal ones compute the same table, so sharing changes no result.
+std::shared_ptr<Atmosphere::MultipleScatteringCache> Atmosphere::shared_multiple_scattering_cache(const AtmosphereParams& p) {
+  static std::mutex mutex;
+  static std::vector<std::pair<AtmosphereParams, std::shared_ptr<MultipleScatteringCache>>> recent;  // newest last
+  constexpr std::size_t kKeep = 4;
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (std::size_t i = 0; i < recent.size(); ++i) {
+    if (same_params(recent[i].first, p)) {
+      auto entry = recent[i];
+      recent.erase(recent.begin() + static_cast<std::ptrdiff_t>(i));
+      recent.push_back(entry);
+      return entry.second;
+    }
+  }
+  if (recent.size() == kKeep) recent.erase(recent.begin());
+  recent.emplace_back(p, std::make_shared<MultipleScatteringCache>());
+  return recent.back().second;
+}
+
 Atmosphere::Atmosphere(const AtmosphereParams& p) : p_(p) {
   p_.validate();
+  ms_ = shared_multiple_scattering_cache(p_);
   r_ground_ = kGroundRadius_m + p_.ground_elevation_m;
   e0_ = astm_g173_extraterrestrial_10nm();
   const double top_height = kTopRadius_m - kGroundRadius_m;

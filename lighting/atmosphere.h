@@ -141,7 +141,10 @@ class Atmosphere {
     std::once_flag once;
     std::vector<Spectrum> table;
   };
-  std::shared_ptr<MultipleScatteringCache> ms_ = std::make_shared<MultipleScatteringCache>();
+  // Shared by every Atmosphere built from equal parameters (shared_multiple_scattering_cache in
+  // atmosphere.cpp): the table depends only on them, and each relit variant builds a new SkyModel.
+  std::shared_ptr<MultipleScatteringCache> ms_;
+  static std::shared_ptr<MultipleScatteringCache> shared_multiple_scattering_cache(const AtmosphereParams& p);
 };
 
 }  // namespace skyband

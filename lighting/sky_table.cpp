@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "geometry/input_error.h"
 #include "lighting/phase_functions.h"
 
@@ -43,7 +45,9 @@ SkyTable::SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, Scattering
   aerosol_g_ = atmosphere.params().aerosol_asymmetry_g;
   has_multiple_ = orders == ScatteringOrders::Multiple;
   nodes_.resize(static_cast<std::size_t>(kAltitudeNodes * kAzimuthNodes));
-  for (int i = 0; i < kAltitudeNodes; ++i) {
+  // Rows in parallel (each node is written by one task: the table does not depend on the thread
+  // count). Atmosphere's queries are const and thread-safe.
+  tbb::parallel_for(0, kAltitudeNodes, [&](int i) {
     const double u = static_cast<double>(i) / (kAltitudeNodes - 1);
     const double alt = kHalfPi * u * u;
     for (int j = 0; j < kAzimuthNodes; ++j) {
@@ -51,7 +55,7 @@ SkyTable::SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, Scattering
       const Vec3 v(std::sin(az) * std::cos(alt), std::cos(az) * std::cos(alt), std::sin(alt));
       nodes_[static_cast<std::size_t>(i * kAzimuthNodes + j)] = atmosphere.sky_radiance_parts(v, sun_dir_, orders);
     }
-  }
+  });
 }
 
 const Vec3& SkyTable::sun_direction() const { return sun_dir_; }

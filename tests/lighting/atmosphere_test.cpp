@@ -360,3 +360,26 @@ BOOST_AUTO_TEST_CASE(refraction_formulas) {
   BOOST_TEST(east.x() == 1.0, tt::tolerance(1e-12));
   BOOST_TEST(azimuth_of(east) == deg(90), tt::tolerance(1e-12));
 }
+
+// The multiple-scattering table is shared between Atmospheres with equal parameters (each
+// SkyModel builds its own Atmosphere). Sharing must never hand one parameter set another's
+// table: the multiple-scattering radiance of an atmosphere is the same whether its table was
+// built first, after another parameter set's, or taken from an earlier equal atmosphere; and
+// a different ground albedo (which only the multiple-scattering term sees) changes it.
+BOOST_AUTO_TEST_CASE(multiple_scattering_table_shared_only_between_equal_parameters) {
+  AtmosphereParams dark, bright;
+  dark.ground_albedo = 0.05;
+  bright.ground_albedo = 0.6;
+  bright.aod550 = 0.23;  // parameters never used elsewhere in this test binary: fresh tables
+  dark.aod550 = 0.23;
+  const Vec3 view = Vec3(0.3, 0.2, 0.4).normalized(), sun = Vec3(-0.2, 0.5, 0.6).normalized();
+  auto multiple = [&](const AtmosphereParams& p) {
+    return Atmosphere(p).sky_radiance_parts(view, sun, ScatteringOrders::Multiple).multiple;
+  };
+  const Spectrum d1 = multiple(dark);
+  const Spectrum b1 = multiple(bright);
+  const Spectrum d2 = multiple(dark);
+  for (int i = 0; i < kSpectrumSamples; ++i) BOOST_TEST(d1[i] == d2[i]);  // bit-identical
+  // Brighter ground: more light scattered back up (ratio well above any quadrature error).
+  BOOST_TEST(b1[20] > 1.2 * d1[20]);
+}
