@@ -7,20 +7,29 @@
 // the reference of the same face and view with the sky unobstructed (max_err_open%): where an
 // occluder hides the lobe's core, what remains is its tails, which ε truncates by design (the
 // seed's G has no visibility in it), so the first measure can be large on a tiny value.
+// xyz_us, xyz_ns/eval: the renderer's path, the same march in CIE XYZ on the sky resampled on
+// the stereographic grid (specular_sky_colour.h; Fresnel rank 4 for aluminium, 1 for
+// dielectrics), time per point (best of 5 passes, one thread) and per sky evaluation.
 // Usage: bench_specular [--views N] [--epsilon E] [--alpha-step-per-m C] [--delta-step-per-m C]
 //                       [--single-line-per-m C] [--max-alpha-step R] [--max-delta-step R] [--m M ...]
-// (defaults: 8 views per point and the library's SpecularSkyOptions).
+//                       [--material NAME] [--xyz-only]
+// (defaults: 8 views per point, the library's SpecularSkyOptions, aluminium-panel's Fresnel
+// table and specular weight).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "lighting/material.h"
+#include "geometry/input_error.h"
+#include "lighting/sky_radiance_grid.h"
 #include "lighting/specular_sky.h"
+#include "lighting/specular_sky_colour.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 
@@ -50,9 +59,22 @@ int main(int argc, char** argv) {
   app.add_option("--max-delta-step", opt.max_delta_step_rad, "radians")->capture_default_str();
   app.add_option("--min-compression", opt.min_compression)->capture_default_str();
   app.add_option("--m", roughness, "Beckmann roughness values")->capture_default_str();
+  bool xyz_only = false;
+  app.add_flag("--xyz-only", xyz_only, "time only the XYZ march (the other columns print 0)");
+  std::string material = "aluminium-panel";
+  app.add_option("--material", material, "built-in material whose Fresnel table and weight are used")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   const ClearSky sky;
-  const Material& al = find_material("aluminium-panel");
+  const Material* al_ptr = nullptr;
+  try {
+    al_ptr = &find_material(material, "--material");
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "bench_specular: %s\n", e.what());
+    return 2;
+  }
+  const Material& al = *al_ptr;
+  const SkyRadianceGrid grid(sky, 1);
+  const ColourSpecularSky colour(grid, &al.fresnel);
 
   VisibilityCache cache;
   const Vec3 normals[] = {Vec3(0, 0, 1), Vec3(0.8, 0.6, 0), Vec3(-0.3, 0.4, 0.8)};
@@ -68,17 +90,17 @@ int main(int argc, char** argv) {
     }));
   }
 
-  std::printf("specular sky: truncated (eps = %g) vs full reference; %zu points x %d views, 64 bands, CIE clear sky\n",
-              opt.epsilon, cache.size(), views);
-  std::printf("%6s %12s %12s %9s %12s %12s %10s %10s %14s\n", "m", "trunc_us", "full_us", "speedup", "trunc_evals",
-              "full_evals", "max_err%", "mean_err%", "max_err_open%");
+  std::printf("specular sky: truncated (eps = %g) vs full reference; %zu points x %d views, 64 bands, CIE clear sky, %s\n",
+              opt.epsilon, cache.size(), views, material.c_str());
+  std::printf("%6s %12s %12s %9s %12s %12s %10s %10s %14s %10s %12s\n", "m", "trunc_us", "full_us", "speedup", "trunc_evals",
+              "full_evals", "max_err%", "mean_err%", "max_err_open%", "xyz_us", "xyz_ns/eval");
   using clock = std::chrono::steady_clock;
   for (double m : roughness) {
     const SpecularLobe lobe{m, al.specular_weight, &al.fresnel, false};
     double t_fast = 0, t_full = 0, max_err = 0, sum_err = 0, max_err_open = 0;
     std::vector<double> open_ref(static_cast<std::size_t>(views), 0.0);  // points come in (open, occluded) pairs
     std::size_t e_fast = 0, e_full = 0, cases = 0;
-    for (std::size_t p = 0; p < cache.size(); ++p) {
+    for (std::size_t p = 0; p < cache.size() && !xyz_only; ++p) {
       const PointVisibilityView v = cache.view(p);
       for (int k = 0; k < views; ++k) {
         // Views on a spiral over the hemisphere, θ up to 80°.
@@ -105,10 +127,29 @@ int main(int argc, char** argv) {
         ++cases;
       }
     }
+    // The renderer's XYZ march over the same points and views: best of 5 passes.
+    double t_xyz = 1e300, sink = 0;
+    std::size_t e_xyz = 0;
+    for (int pass = 0; pass < 5; ++pass) {
+      std::size_t evals = 0;
+      const auto t0 = clock::now();
+      for (std::size_t p = 0; p < cache.size(); ++p) {
+        const PointVisibilityView v = cache.view(p);
+        for (int k = 0; k < views; ++k) {
+          const double theta = std::acos(1.0 - (k + 0.5) / views * (1.0 - std::cos(80.0 * kPi / 180)));
+          SpecularSkyStats st;
+          sink += colour.radiance_xyz(v, view_at(v.frame().normal, theta, 2.39996 * k), lobe, opt, &st).Y;
+          evals += st.radiance_evals;
+        }
+      }
+      t_xyz = std::min(t_xyz, std::chrono::duration<double, std::micro>(clock::now() - t0).count());
+      e_xyz = evals;
+    }
+    if (!std::isfinite(sink)) std::printf("non-finite XYZ march result\n");
     const double n = static_cast<double>(cache.size()) * views;
-    std::printf("%6.2f %12.1f %12.1f %9.1f %12.0f %12.0f %10.3f %10.3f %14.3f\n", m, t_fast / n, t_full / n,
-                t_full / t_fast, e_fast / n, e_full / n, 100 * max_err, cases ? 100 * sum_err / cases : 0.0,
-                100 * max_err_open);
+    std::printf("%6.2f %12.1f %12.1f %9.1f %12.0f %12.0f %10.3f %10.3f %14.3f %10.1f %12.1f\n", m, t_fast / n, t_full / n,
+                t_fast > 0 ? t_full / t_fast : 0.0, e_fast / n, e_full / n, 100 * max_err, cases ? 100 * sum_err / cases : 0.0,
+                100 * max_err_open, t_xyz / n, e_xyz ? 1e3 * t_xyz / static_cast<double>(e_xyz) : 0.0);
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -212,10 +213,33 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   // Specular sky: the ε-march, exactly at block corners and wherever the image is not flat.
   std::vector<Xyz> specular_xyz(pass.surfaces.size());
   const auto material_of = [&](std::size_t k) -> const Material& { return *slot_materials[pass.surfaces[k].material_slot]; };
+  // Reuse classes (specular_reuse.h): 0 for rough materials; near-mirrors (rougher than a
+  // perfect mirror, smoother than specular_reuse_min_roughness) 1 or 2 where their lobe window is
+  // wholly open or wholly closed sky (lobe_window_sky), −1 where a visibility edge is near their
+  // reflection; perfect mirrors −1 (a single look-up each anyway).
+  std::vector<std::int8_t> reuse_class(pass.surfaces.size(), -1);
+  if (settings.specular_reuse_block >= 4 && settings.specular_reuse_tolerance > 0.0) {
+    run_with_threads(settings.threads, [&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                            const Material& m = material_of(k);
+                            if (!m.has_specular()) continue;
+                            if (m.roughness_m >= settings.specular_reuse_min_roughness) {
+                              reuse_class[k] = 0;
+                            } else if (m.roughness_m >= settings.specular.mirror_below_m) {
+                              const LobeWindowSky w = lobe_window_sky(pass.visibility.view(k), pass.surfaces[k].view_dir,
+                                                                      m.specular_lobe(settings.paper_scale), settings.specular);
+                              reuse_class[k] = w == LobeWindowSky::kOpen ? 1 : w == LobeWindowSky::kClosed ? 2 : -1;
+                            }
+                          }
+                        });
+    });
+  }
   const SpecularReuseStats reuse = shade_specular_with_reuse(
       pass, settings.specular_reuse_block, settings.specular_reuse_tolerance,
       [&](std::size_t k) { return material_of(k).has_specular(); },
-      [&](std::size_t k) { return material_of(k).roughness_m >= settings.specular_reuse_min_roughness; },
+      [&](std::size_t k) { return static_cast<int>(reuse_class[k]); },
       [&](std::size_t k) {
         const SurfaceSample& ss = pass.surfaces[k];
         return specular_skies[slot_specular[ss.material_slot]]->radiance_xyz(pass.visibility.view(k), ss.view_dir,

@@ -49,9 +49,9 @@ bool predicts(const Xyz (&c)[4], double fx, double fy, const Xyz& actual, double
 class Reuse {
  public:
   Reuse(const GeometryPass& pass, double tolerance, const std::function<bool(std::size_t)>& glossy,
-        const std::function<bool(std::size_t)>& reusable, const std::function<Xyz(std::size_t)>& exact,
+        const std::function<int(std::size_t)>& reuse_class, const std::function<Xyz(std::size_t)>& exact,
         std::vector<Xyz>& out)
-      : pass_(pass), tolerance_(tolerance), glossy_(glossy), reusable_(reusable), exact_(exact), out_(out),
+      : pass_(pass), tolerance_(tolerance), glossy_(glossy), class_(reuse_class), exact_(exact), out_(out),
         done_(pass.surfaces.size(), 0) {}
 
   // The surface of sample i of pixel (col, row); kBackground outside the image (so blocks that
@@ -81,7 +81,7 @@ class Reuse {
   const GeometryPass& pass_;
   double tolerance_;
   const std::function<bool(std::size_t)>& glossy_;
-  const std::function<bool(std::size_t)>& reusable_;
+  const std::function<int(std::size_t)>& class_;
   const std::function<Xyz(std::size_t)>& exact_;
   std::vector<Xyz>& out_;
   std::vector<std::uint8_t> done_;  // 1: out_[k] is the exact march
@@ -100,9 +100,14 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
   const std::uint32_t mid[5] = {centre, at(xm, ya, i), at(xa, ym, i), at(xb, ym, i), at(xm, yb, i)};
   const double fxm = double(xm - xa) / (xb - xa), fym = double(ym - ya) / (yb - ya);
   const double fx[5] = {fxm, fxm, 0.0, 1.0, fxm}, fy[5] = {fym, 0.0, fym, fym, 1.0};
-  bool smooth = glossy(centre) && reusable_(centre);
-  for (int j = 0; smooth && j < 4; ++j) smooth = glossy(corner[j]) && same_plane(pass_.surfaces[centre], pass_.surfaces[corner[j]]);
-  for (int j = 1; smooth && j < 5; ++j) smooth = glossy(mid[j]) && same_plane(pass_.surfaces[centre], pass_.surfaces[mid[j]]);
+  const int cls = glossy(centre) ? class_(centre) : -1;
+  // Whether sample k may take the centre's interpolation.
+  const auto alike = [&](std::uint32_t k) {
+    return glossy(k) && same_plane(pass_.surfaces[centre], pass_.surfaces[k]) && class_(k) == cls;
+  };
+  bool smooth = cls >= 0;
+  for (int j = 0; smooth && j < 4; ++j) smooth = alike(corner[j]);
+  for (int j = 1; smooth && j < 5; ++j) smooth = alike(mid[j]);
   Xyz c[4];
   if (smooth) {
     for (int j = 0; j < 4; ++j) c[j] = out_[corner[j]];
@@ -116,7 +121,7 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
       for (int col = xa; col < xb; ++col) {
         const std::uint32_t k = at(col, row, i);
         if (!glossy(k) || done_[k]) continue;
-        if (same_plane(pass_.surfaces[centre], pass_.surfaces[k])) {
+        if (alike(k)) {
           out_[k] = bilinear(c, double(col - xa) / (xb - xa), double(row - ya) / (yb - ya));
           ++interpolated;
         } else {
@@ -141,12 +146,12 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
 
 SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block, double tolerance,
                                              const std::function<bool(std::size_t)>& glossy,
-                                             const std::function<bool(std::size_t)>& reusable,
+                                             const std::function<int(std::size_t)>& reuse_class,
                                              const std::function<Xyz(std::size_t)>& exact, int threads,
                                              std::vector<Xyz>& out) {
   const int w = pass.width, h = pass.height;
   const std::size_t spp = static_cast<std::size_t>(pass.samples);
-  Reuse r(pass, tolerance, glossy, reusable, exact, out);
+  Reuse r(pass, tolerance, glossy, reuse_class, exact, out);
   std::atomic<std::size_t> n_exact{0}, n_interp{0};
   // Block sizes: the top level `block` rounded down to min_block·2^j; min_block = 4 (below that
   // a block's exact samples are as many as its interpolated ones).

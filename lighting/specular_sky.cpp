@@ -217,3 +217,44 @@ MarchSteps march_steps(PointContext& c, const SpecularSkyOptions& opt) {
 }
 
 }  // namespace skyband::specular_detail
+
+namespace skyband {
+
+LobeWindowSky lobe_window_sky(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                              const SpecularSkyOptions& opt) {
+  using namespace specular_detail;
+  PointContext c;
+  if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c))
+    return LobeWindowSky::kClosed;  // nothing reflected toward V (the integral is exactly 0)
+  const BandFrame& f = view.frame();
+  const double r = opt.lobe_window_per_m * lobe.roughness_m;
+  if (!(r > 0.0 && r < kPi / 2)) return LobeWindowSky::kMixed;
+  double alpha_q, delta_q;
+  f.angles_of(c.q, alpha_q, delta_q);
+  const double sin_ratio = std::sin(r) / std::sin(alpha_q);
+  if (!(sin_ratio < 1.0) || !(sin_ratio > 0.0)) return LobeWindowSky::kMixed;  // the cap holds the pencil axis
+  const double half = std::asin(sin_ratio);
+  // δ_Q in [−π/2, 3π/2): the sky range lies in [0, π], so the cap's δ interval compares with it
+  // without wrapping (a Q just below the horizon on the far side is near δ = π, not −π).
+  if (delta_q < -kPi / 2) delta_q += 2 * kPi;
+  const double d0 = delta_q - half, d1 = delta_q + half;
+  if (d1 <= f.delta_min_rad || d0 >= f.delta_max_rad) return LobeWindowSky::kClosed;  // no sky in the cap
+  if (d0 < f.delta_min_rad || d1 > f.delta_max_rad) return LobeWindowSky::kMixed;     // horizon or face plane
+  const double a0 = alpha_q - r, a1 = alpha_q + r;  // inside (0, π): sin α_Q > sin R
+  const std::size_t b0 = band_of_s(view, std::sin(d0 - f.beta_rad)), b1 = band_of_s(view, std::sin(d1 - f.beta_rad));
+  bool open = true, closed = true;
+  for (std::size_t b = b0; b <= b1; ++b) {
+    bool covered = false, touched = false;
+    for (const VisibleInterval& iv : view.visible(b)) {
+      const double lo = clamp_alpha(iv.alpha0_rad), hi = clamp_alpha(iv.alpha1_rad);
+      if (lo <= a0 && hi >= a1) covered = true;
+      if (hi > a0 && lo < a1) touched = true;
+    }
+    open = open && covered;
+    closed = closed && !touched;
+    if (!open && !closed) return LobeWindowSky::kMixed;
+  }
+  return open ? LobeWindowSky::kOpen : LobeWindowSky::kClosed;
+}
+
+}  // namespace skyband

@@ -250,6 +250,32 @@ double integrand_cs(const PointContext& c, const Line& line, double cos_a, doubl
   return p.eval(cos_a * f.x + sin_a * line.u, v_dot_h, k, out);
 }
 
+// The three Gauss–Legendre nodes of one piece (weights half·w_k) added into `cell`, their
+// levels raised into `level`: integrand_cs for each, with the three lobe factors computed
+// side by side first (independent dependency chains the processor overlaps) and the sky looked
+// up only where the factor is positive.
+template <class Policy>
+void integrate_nodes3(const PointContext& c, const Line& line, const double (&cos_a)[3], const double (&sin_a)[3],
+                      double half, Policy& p, typename Policy::Value& scratch, typename Policy::Value& cell, Level& level,
+                      SpecularSkyStats& stats) {
+  double k[3], v_dot_h[3];
+  Level l[3];
+  for (int n = 0; n < 3; ++n) {
+    const double n_dot_w = cos_a[n] * c.n_dot_x + sin_a[n] * line.n_dot_u;
+    const double v_dot_w = cos_a[n] * c.v_dot_x + sin_a[n] * line.v_dot_u;
+    k[n] = lobe_factor(c.lobe_k, n_dot_w, v_dot_w, v_dot_h[n], &l[n].x) * sin_a[n] * sin_a[n];
+  }
+  const BandFrame& f = c.view->frame();
+  for (int n = 0; n < 3; ++n) {
+    if (k[n] > 0.0) {
+      ++stats.radiance_evals;
+      l[n].g = p.eval(cos_a[n] * f.x + sin_a[n] * line.u, v_dot_h[n], k[n], scratch);
+      if (l[n].g > 0.0) cell += scratch * (half * kGl3W[n]);
+    }
+    raise(level, l[n]);
+  }
+}
+
 // The line with the point's N·u and V·u filled in (integrand_cs needs them).
 inline Line with_dots(const PointContext& c, Line line) {
   line.n_dot_u = c.n.dot(line.u);
@@ -334,12 +360,7 @@ void march(const PointContext& c, const Line& line, double alpha_star, double co
         }
         const double node_cos[3] = {cm * cos_d + sm * sin_d, cm, cm * cos_d - sm * sin_d};
         const double node_sin[3] = {sm * cos_d - cm * sin_d, sm, sm * cos_d + cm * sin_d};
-        for (int n = 0; n < 3; ++n) {
-          Level l;
-          l.g = integrand_cs(c, line, node_cos[n], node_sin[n], p, f, stats, &l.x);
-          if (l.g > 0.0) cell += f * (half * kGl3W[n]);
-          raise(cell_l, l);
-        }
+        integrate_nodes3(c, line, node_cos, node_sin, half, p, f, cell, cell_l, stats);
         any = true;
       }
       // Move on only if the interval ends inside this cell (in the march direction).
@@ -496,6 +517,23 @@ struct SpectralReflection {
     return sum / kSpectrumSamples;
   }
 };
+
+// What the sky is like over a point's *lobe window*: the cap of directions within
+// R = opt.lobe_window_per_m·m of the mirror direction Q (outside it the Beckmann factor is below
+// e^{−R²/4m²} = 5·10⁻⁶ of its peak at R = 7m, specular_detail::march_steps). kOpen: every
+// direction of the cap is visible sky (per the cache: the band lines that cross it have a visible
+// interval holding the cap's whole α range, and the cap lies within the face's sky range
+// [δ_min, δ_max], so neither the horizon nor the face plane cuts it); kClosed: none is (the
+// lines that cross it see nothing of its α range, or the whole cap lies outside the sky range;
+// also when nothing is reflected toward V at all); kMixed otherwise, and whenever the cap holds
+// the pencil axis (sin α_Q ≤ sin R), where every band line meets. A point whose cap is open or
+// closed has no visibility edge near its reflection: its specular sky is a smooth function of the
+// view (specular_reuse.h uses this for near-mirrors). The cap's δ extent: a plane δ of the
+// pencil is at angular distance asin(sin α_Q·|sin(δ − δ_Q)|) from Q, so the cap meets exactly
+// the planes with |δ − δ_Q| ≤ asin(sin R / sin α_Q).
+enum class LobeWindowSky { kOpen, kClosed, kMixed };
+LobeWindowSky lobe_window_sky(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                              const SpecularSkyOptions& opt = {});
 
 // The ε-truncated partial-sky integral (seed §3), spectral. `view_dir` points from the surface
 // toward the eye (any length).

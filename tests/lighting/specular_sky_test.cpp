@@ -250,3 +250,68 @@ BOOST_AUTO_TEST_CASE(lobe_factor_matches_cook_torrance) {
           }
   BOOST_TEST(compared > 1000);  // most pairs have both directions above the surface
 }
+
+// lobe_window_sky: the cap of directions within R = 7m of the mirror direction Q. Window glass,
+// m = 0.01, R = 0.07 rad. Expected classes from the geometry alone: under an open sky the cap
+// is open when it clears the horizon (Q.z > sin R), the face plane (N·Q > sin R) and the pencil
+// axis (sin α_Q > sin R), and closed when it lies wholly below the horizon (Q.z < −sin R); cases
+// within 10⁻³ of these limits are skipped (band quantisation). With every band line blocked the
+// open cases become closed; with the lines blocked below α_Q (an edge through Q) mixed; with
+// them blocked beyond α_Q + 2R (outside the cap) still open; with only the band holding δ_Q
+// blocked mixed (or closed where the cap lies within that band).
+BOOST_AUTO_TEST_CASE(lobe_window_sky_classifies_the_cap_around_the_mirror_direction) {
+  const SpecularLobe lobe = find_material("window-glass").specular_lobe();
+  const double r = 7.0 * lobe.roughness_m, sin_r = std::sin(r), margin = 1e-3;
+  int open_cases = 0, closed_cases = 0, one_band_mixed = 0;
+  for (const Vec3& n_raw : {Vec3(0, 0, 1), Vec3(0.8, 0.6, 0), Vec3(-0.3, 0.4, 0.8), Vec3(0.2, 0.1, -0.5)}) {
+    const Vec3 n = n_raw.normalized();
+    const BandFrame f = BandFrame::make(n);
+    for (double tv : {5.0, 20.0, 45.0, 70.0, 85.0})
+      for (double pv = 0.0; pv < 6.2; pv += 0.7) {
+        const Vec3 v = view_at(n, deg(tv), pv);
+        const Vec3 q = 2.0 * n.dot(v) * n - v;
+        double aq, dq;
+        f.angles_of(q, aq, dq);
+        const bool open = q.z() > sin_r + margin && n.dot(q) > sin_r + margin && std::sin(aq) > sin_r + margin;
+        const bool below = q.z() < -(sin_r + margin);
+        if (!open && !below) continue;
+        BOOST_TEST_CONTEXT("n " << n.transpose() << " θv " << tv << " φv " << pv) {
+          const VisibilityCache sky = single_point_cache(n, 64);
+          const LobeWindowSky expected = open ? LobeWindowSky::kOpen : LobeWindowSky::kClosed;
+          BOOST_TEST((lobe_window_sky(sky.view(0), v, lobe) == expected));
+          if (below) {
+            ++closed_cases;
+            continue;
+          }
+          ++open_cases;
+          const VisibilityCache blocked = single_point_cache(n, 64, [](int, double) {
+            return std::vector<std::pair<double, double>>{};
+          });
+          BOOST_TEST((lobe_window_sky(blocked.view(0), v, lobe) == LobeWindowSky::kClosed));
+          const VisibilityCache edge = single_point_cache(n, 64, [&](int, double) {
+            return std::vector<std::pair<double, double>>{{aq, kPi}};
+          });
+          BOOST_TEST((lobe_window_sky(edge.view(0), v, lobe) == LobeWindowSky::kMixed));
+          const VisibilityCache far = single_point_cache(n, 64, [&](int, double) {
+            return std::vector<std::pair<double, double>>{{0.0, std::min(aq + 2 * r, kPi)}};
+          });
+          BOOST_TEST((lobe_window_sky(far.view(0), v, lobe) == LobeWindowSky::kOpen));
+          const std::size_t b_q = specular_detail::band_of_s(sky.view(0), std::sin(dq - f.beta_rad));
+          const VisibilityCache one_band = single_point_cache(n, 64, [&](int b, double) {
+            return b == static_cast<int>(b_q) ? std::vector<std::pair<double, double>>{}
+                                              : std::vector<std::pair<double, double>>{{0.0, kPi}};
+          });
+          // Mixed, or closed where the cap lies within that one band (wide bands near the horizon).
+          const LobeWindowSky one = lobe_window_sky(one_band.view(0), v, lobe);
+          BOOST_TEST((one != LobeWindowSky::kOpen));
+          one_band_mixed += one == LobeWindowSky::kMixed;
+        }
+      }
+  }
+  BOOST_TEST(open_cases > 20);
+  BOOST_TEST(closed_cases > 5);
+  BOOST_TEST(one_band_mixed > open_cases / 2);
+  // A view from behind the face reflects nothing: closed.
+  const VisibilityCache sky = single_point_cache(Vec3(0, 0, 1), 16);
+  BOOST_TEST((lobe_window_sky(sky.view(0), Vec3(0.3, 0.2, -1.0), lobe) == LobeWindowSky::kClosed));
+}
