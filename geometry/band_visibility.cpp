@@ -269,6 +269,36 @@ struct BandVisibility::Impl {
     j1 = static_cast<int>(std::upper_bound(keys + j0, keys + hi, phi + kMargin) - keys);
   }
 
+  // An axis-aligned box in the point's local frame (x along the axis, h, z), metres.
+  struct LocalBox {
+    double x_lo, x_hi, h_lo, h_hi, z_lo, z_hi;
+  };
+
+  // A BVH node's box in the local frame (conservative: the local box of the rotated world box);
+  // false if the node lies wholly below the horizon or wholly behind the face plane (all sample
+  // half-planes lie in the closed front half-space), so it cannot hide sky.
+  bool node_box(const BvhNode& node, double cos_beta, double sin_beta, LocalBox& b) const {
+    if (node.box.hi.z() <= p.z()) return false;
+    const Vec3 c = local_from_world * (node.box.centre() - p);
+    const Vec3 e = abs_local_from_world * (0.5 * (node.box.hi - node.box.lo));
+    b = {c.x() - e.x(), c.x() + e.x(), c.y() - e.y(), c.y() + e.y(), c.z() - e.z(), c.z() + e.z()};
+    const double front = cos_beta * (cos_beta >= 0 ? b.h_hi : b.h_lo) + sin_beta * (sin_beta >= 0 ? b.z_hi : b.z_lo);
+    return front >= -1e-7;
+  }
+
+  // The local bounding box of a triangle's local vertices, in two parts (the (h, z) range decides
+  // the pencil span first; the x range is needed only if that passes).
+  static void triangle_hz(const Vec3 L[3], LocalBox& b) {
+    b.h_lo = std::min(std::min(L[0].y(), L[1].y()), L[2].y());
+    b.h_hi = std::max(std::max(L[0].y(), L[1].y()), L[2].y());
+    b.z_lo = std::min(std::min(L[0].z(), L[1].z()), L[2].z());
+    b.z_hi = std::max(std::max(L[0].z(), L[1].z()), L[2].z());
+  }
+  static void triangle_x(const Vec3 L[3], LocalBox& b) {
+    b.x_lo = std::min(std::min(L[0].x(), L[1].x()), L[2].x());
+    b.x_hi = std::max(std::max(L[0].x(), L[1].x()), L[2].x());
+  }
+
   // Conservative pseudo-angle span in the (h, z) plane of an axis-aligned local rectangle,
   // clipped to the sky side z ≥ 0. Returns false if it cannot reach a sky half-plane.
   static bool pencil_span(double h_lo, double h_hi, double z_lo, double z_hi, double& plo, double& phi) {
@@ -288,8 +318,8 @@ struct BandVisibility::Impl {
 
   // Conservative α-range (pseudo-angle units) of a local box [lx]×[lh]×[lz] seen along any sample
   // line, clipped to the part outside the axis tails. False if nothing is left.
-  bool alpha_range(double lx_lo, double lx_hi, double lh_lo, double lh_hi, double lz_lo, double lz_hi,
-                   double& alo, double& ahi, double* raw_lo = nullptr, double* raw_hi = nullptr) const {
+  bool alpha_range(const LocalBox& b, double& alo, double& ahi, double* raw_lo = nullptr, double* raw_hi = nullptr) const {
+    const double lx_lo = b.x_lo, lx_hi = b.x_hi, lh_lo = b.h_lo, lh_hi = b.h_hi, lz_lo = b.z_lo, lz_hi = b.z_hi;
     // ρ is the distance to the axis (the b coordinate of a point on its own sample line).
     const double zl = std::max(lz_lo, 0.0);
     const double dh = lh_lo > 0 ? lh_lo : (lh_hi < 0 ? -lh_hi : 0.0);
@@ -342,6 +372,16 @@ struct BandVisibility::Impl {
     return true;
   }
 
+  // Front-to-back order: the child whose box centre is nearer the point is popped first.
+  void push_children_near_first(const BvhNode& node) {
+    const auto& nodes = scene.bvh_nodes();
+    const std::uint32_t l = node.first, r = node.first + 1;
+    const double dl = (nodes[l].box.centre() - p).squaredNorm();
+    const double dr = (nodes[r].box.centre() - p).squaredNorm();
+    stack.push_back(dl < dr ? r : l);
+    stack.push_back(dl < dr ? l : r);
+  }
+
   void traverse() {
     const auto& nodes = scene.bvh_nodes();
     if (nodes.empty() || active.empty()) return;
@@ -351,22 +391,15 @@ struct BandVisibility::Impl {
     while (!stack.empty()) {
       const BvhNode& node = nodes[stack.back()];
       stack.pop_back();
-      if (node.box.hi.z() <= p.z()) continue;  // wholly below the horizon: cannot hide sky
-      const Vec3 c = local_from_world * (node.box.centre() - p);
-      const Vec3 e = abs_local_from_world * (0.5 * (node.box.hi - node.box.lo));
-      const double lx_lo = c.x() - e.x(), lx_hi = c.x() + e.x();
-      const double lh_lo = c.y() - e.y(), lh_hi = c.y() + e.y();
-      const double lz_lo = c.z() - e.z(), lz_hi = c.z() + e.z();
-      // Wholly behind the face plane (all sample half-planes lie in the closed front half-space).
-      const double front = cb * (cb >= 0 ? lh_hi : lh_lo) + sb * (sb >= 0 ? lz_hi : lz_lo);
-      if (front < -1e-7) continue;
+      LocalBox b;
+      if (!node_box(node, cb, sb, b)) continue;
       double plo, phi;
-      if (!pencil_span(lh_lo, lh_hi, lz_lo, lz_hi, plo, phi)) continue;
+      if (!pencil_span(b.h_lo, b.h_hi, b.z_lo, b.z_hi, plo, phi)) continue;
       int j0, j1;
       plane_range(plo, phi, 0, static_cast<int>(active_keys.size()), j0, j1);
       if (j0 >= j1) continue;
       double alo, ahi;
-      if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi)) continue;  // only in the axis tails
+      if (!alpha_range(b, alo, ahi)) continue;  // only in the axis tails
       if (covered_on_all(j0, j1, alo, ahi)) continue;
       if (node.count > 0) {
         const auto& order = scene.bvh_triangle_order();
@@ -376,16 +409,7 @@ struct BandVisibility::Impl {
         const bool own = j1 - j0 > kLeafOwnRanges || alo == tail_p || ahi == 2.0 - tail_p;
         for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1, own, alo, ahi);
       } else {
-        const std::uint32_t l = node.first, r = node.first + 1;
-        const double dl = (nodes[l].box.centre() - p).squaredNorm();
-        const double dr = (nodes[r].box.centre() - p).squaredNorm();
-        if (dl < dr) {
-          stack.push_back(r);
-          stack.push_back(l);
-        } else {
-          stack.push_back(l);
-          stack.push_back(r);
-        }
+        push_children_near_first(node);
       }
     }
   }
@@ -409,13 +433,11 @@ struct BandVisibility::Impl {
     int k0 = j0, k1 = j1;
     if (own_ranges) {
       double plo, phi;
-      auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
-      auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
-      const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
-      const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
-      if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) return;
-      const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
-      if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi)) return;
+      LocalBox tb;
+      triangle_hz(L, tb);
+      if (!pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, plo, phi)) return;
+      triangle_x(L, tb);
+      if (!alpha_range(tb, alo, ahi)) return;
       plane_range(plo, phi, j0, j1, k0, k1);
       if (k0 >= k1) return;
     }
@@ -782,24 +804,15 @@ struct BandVisibility::Impl {
     while (!stack.empty()) {
       const BvhNode& node = nodes[stack.back()];
       stack.pop_back();
-      if (node.box.hi.z() <= p.z()) continue;
-      const Vec3 c = local_from_world * (node.box.centre() - p);
-      const Vec3 e = abs_local_from_world * (0.5 * (node.box.hi - node.box.lo));
-      const double lx_lo = c.x() - e.x(), lx_hi = c.x() + e.x();
-      const double lh_lo = c.y() - e.y(), lh_hi = c.y() + e.y();
-      const double lz_lo = c.z() - e.z(), lz_hi = c.z() + e.z();
-      const double front = cb * (cb >= 0 ? lh_hi : lh_lo) + sb * (sb >= 0 ? lz_hi : lz_lo);
-      if (front < -1e-7) continue;
+      LocalBox b;
+      if (!node_box(node, cb, sb, b)) continue;
       double plo, phi, alo, ahi, rlo, rhi;
-      if (!pencil_span(lh_lo, lh_hi, lz_lo, lz_hi, plo, phi)) continue;
+      if (!pencil_span(b.h_lo, b.h_hi, b.z_lo, b.z_hi, plo, phi)) continue;
       if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
-      if (!alpha_range(lx_lo, lx_hi, lh_lo, lh_hi, lz_lo, lz_hi, alo, ahi, &rlo, &rhi)) continue;
+      if (!alpha_range(b, alo, ahi, &rlo, &rhi)) continue;
       if (pa < rlo || pa > rhi) continue;
       if (node.count == 0) {
-        const std::uint32_t l = node.first, r = node.first + 1;
-        const bool left_first = (nodes[l].box.centre() - p).squaredNorm() < (nodes[r].box.centre() - p).squaredNorm();
-        stack.push_back(left_first ? r : l);
-        stack.push_back(left_first ? l : r);
+        push_children_near_first(node);
         continue;
       }
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
@@ -811,14 +824,12 @@ struct BandVisibility::Impl {
         const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
         Vec3 L[3];
         for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
-        auto min3 = [](double a, double b, double c) { return std::min(std::min(a, b), c); };
-        auto max3 = [](double a, double b, double c) { return std::max(std::max(a, b), c); };
-        const double h_lo = min3(L[0].y(), L[1].y(), L[2].y()), h_hi = max3(L[0].y(), L[1].y(), L[2].y());
-        const double z_lo = min3(L[0].z(), L[1].z(), L[2].z()), z_hi = max3(L[0].z(), L[1].z(), L[2].z());
-        if (!pencil_span(h_lo, h_hi, z_lo, z_hi, plo, phi)) continue;
+        LocalBox tb;
+        triangle_hz(L, tb);
+        if (!pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, plo, phi)) continue;
         if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
-        const double x_lo = min3(L[0].x(), L[1].x(), L[2].x()), x_hi = max3(L[0].x(), L[1].x(), L[2].x());
-        if (!alpha_range(x_lo, x_hi, h_lo, h_hi, z_lo, z_hi, alo, ahi, &rlo, &rhi)) continue;
+        triangle_x(L, tb);
+        if (!alpha_range(tb, alo, ahi, &rlo, &rhi)) continue;
         if (pa < rlo || pa > rhi) continue;
         if (exact_orientation(v0, v1, v2, p) == 0) continue;
         const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
