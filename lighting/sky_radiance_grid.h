@@ -38,15 +38,18 @@ bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, dou
 
 // The same for a direction of unit length (up to rounding): p = (ω_x, ω_y)/(1 + ω_z), no square
 // root. Inline: the specular march looks up ~10⁸ directions per image.
+// (With ω_z > 0 and |ω| = 1 + O(10⁻¹⁶), |p| < 1 + O(10⁻¹⁶): u, v ∈ [0, cells] up to rounding,
+// so the cell index needs clamping only at the top end and the fractions stay within
+// [−10⁻¹³, 1 + 10⁻¹³], which bilinear weights tolerate; the bounds are still enforced.)
 inline bool sky_grid_cell_unit(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
   if (!(dir.z() > 0.0)) return false;  // also NaN
-  const double k = 0.5 * cells / (1.0 + dir.z());
   const double half = 0.5 * cells;
-  const double u = dir.x() * k + half, v = dir.y() * k + half;
-  ix = std::clamp(static_cast<int>(u), 0, cells - 1);
-  iy = std::clamp(static_cast<int>(v), 0, cells - 1);
-  fx = std::clamp(u - ix, 0.0, 1.0);
-  fy = std::clamp(v - iy, 0.0, 1.0);
+  const double k = half / (1.0 + dir.z());
+  const double u = std::max(dir.x() * k + half, 0.0), v = std::max(dir.y() * k + half, 0.0);
+  ix = std::min(static_cast<int>(u), cells - 1);
+  iy = std::min(static_cast<int>(v), cells - 1);
+  fx = u - ix;
+  fy = v - iy;
   return true;
 }
 

@@ -71,6 +71,12 @@ class Reuse {
   }
   // Pixels [xa, xb) × [ya, yb) of sample index i; marches its corners (xa|xb, ya|yb) first.
   void refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block, std::size_t& marched, std::size_t& interpolated);
+  // A 4 × 4 block at (xa, ya) that is not smooth: its upper and lower 4 × 2 halves (else its
+  // left and right 2 × 4 halves) are tried as blocks of their own, with the same test on their
+  // corners and the two midpoints of their long edges (all on the block's 3 × 3 lattice of
+  // marched points); what no half interpolates is marched. Where a window edge crosses a block
+  // of wall, the half of wall keeps its interpolation.
+  void halves(int xa, int ya, std::size_t i, std::size_t& marched, std::size_t& interpolated);
   // Every owned pixel of [xa, xb) × [ya, yb) exactly.
   void all_exact(int xa, int xb, int ya, int yb, std::size_t i, std::size_t& marched) {
     for (int row = ya; row < yb; ++row)
@@ -132,7 +138,8 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
   }
   if (xa >= pass_.width || ya >= pass_.height) return;  // wholly outside the image
   if (xb - xa <= min_block || yb - ya <= min_block) {
-    all_exact(xa, std::min(xb, pass_.width), ya, std::min(yb, pass_.height), i, marched);
+    if (xb - xa == 4 && yb - ya == 4) halves(xa, ya, i, marched, interpolated);
+    else all_exact(xa, std::min(xb, pass_.width), ya, std::min(yb, pass_.height), i, marched);
     return;
   }
   // Split in four (each child marches its corners first).
@@ -140,6 +147,56 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
   refine(xm, xb, ya, ym, i, min_block, marched, interpolated);
   refine(xa, xm, ym, yb, i, min_block, marched, interpolated);
   refine(xm, xb, ym, yb, i, min_block, marched, interpolated);
+}
+
+void Reuse::halves(int xa, int ya, std::size_t i, std::size_t& marched, std::size_t& interpolated) {
+  constexpr int kSize = 4;
+  const int xb = xa + kSize, yb = ya + kSize, xm = xa + kSize / 2, ym = ya + kSize / 2;
+  for (int y : {ya, ym, yb})
+    for (int x : {xa, xm, xb}) ensure(at(x, y, i), marched);
+  bool taken[kSize][kSize] = {};  // [row − ya][col − xa]: interpolated by a half
+  // Rectangle [x0, x1] × [y0, y1] with its three check points (the midpoints of its long edges,
+  // on the lattice, and its centre, marched here: the short direction is checked too); true if
+  // it was smooth and interpolated.
+  const auto try_half = [&](int x0, int x1, int y0, int y1, const int (&check_x)[3], const int (&check_y)[3]) {
+    const std::uint32_t corner[4] = {at(x0, y0, i), at(x1, y0, i), at(x0, y1, i), at(x1, y1, i)};
+    const std::uint32_t check[3] = {at(check_x[0], check_y[0], i), at(check_x[1], check_y[1], i),
+                                    at(check_x[2], check_y[2], i)};
+    const std::uint32_t ref = check[0];
+    const int cls = glossy(ref) ? class_(ref) : -1;
+    if (cls < 0) return false;
+    const auto alike = [&](std::uint32_t k) {
+      return glossy(k) && same_plane(pass_.surfaces[ref], pass_.surfaces[k]) && class_(k) == cls;
+    };
+    for (std::uint32_t k : corner)
+      if (!alike(k)) return false;
+    if (!alike(check[1]) || !alike(check[2])) return false;
+    Xyz c[4];
+    for (int j = 0; j < 4; ++j) c[j] = out_[corner[j]];
+    for (int j = 0; j < 3; ++j) {
+      ensure(check[j], marched);
+      if (!predicts(c, double(check_x[j] - x0) / (x1 - x0), double(check_y[j] - y0) / (y1 - y0), out_[check[j]], tolerance_))
+        return false;
+    }
+    for (int row = y0; row < y1; ++row)
+      for (int col = x0; col < x1; ++col) {
+        const std::uint32_t k = at(col, row, i);
+        if (!glossy(k) || done_[k] || !alike(k)) continue;
+        out_[k] = bilinear(c, double(col - x0) / (x1 - x0), double(row - y0) / (y1 - y0));
+        taken[row - ya][col - xa] = true;
+        ++interpolated;
+      }
+    return true;
+  };
+  bool any = try_half(xa, xb, ya, ym, {xm, xm, xm}, {ya, ym, ya + 1});
+  any = try_half(xa, xb, ym, yb, {xm, xm, xm}, {ym, yb, ym + 1}) || any;
+  if (!any) {
+    try_half(xa, xm, ya, yb, {xa, xm, xa + 1}, {ym, ym, ym});
+    try_half(xm, xb, ya, yb, {xm, xb, xm + 1}, {ym, ym, ym});
+  }
+  for (int row = ya; row < std::min(yb, pass_.height); ++row)
+    for (int col = xa; col < std::min(xb, pass_.width); ++col)
+      if (!taken[row - ya][col - xa]) ensure(at(col, row, i), marched);
 }
 
 }  // namespace

@@ -18,10 +18,15 @@
 //     `tolerance` of the largest magnitude involved, in each of X, Y and Z: an a-posteriori
 //     check of the interpolation error where it is largest for a smooth term, in both axes.
 // In a smooth block, the samples on the same plane with the centre's class take the bilinear
-// interpolation of the corners and all others are marched exactly; a block that is not smooth is split in four, and
-// a 4 × 4 block that is not smooth is marched exactly. Blocks overhanging the image's right or
-// bottom edge are never smooth (their outside corners have no sample) and are split. Deterministic (decisions use computed values only) and
-// independent of the thread count. block ≤ 1 or tolerance ≤ 0: every sample exactly.
+// interpolation of the corners and all others are marched exactly; a block that is not smooth is
+// split in four. A 4 × 4 block that is not smooth tries its upper and lower 4 × 2 halves (else
+// its left and right 2 × 4 halves) as blocks of their own — corners and long-edge midpoints on
+// its lattice of marched points, plus the half's centre, marched as a check across its short
+// side — so that where a window edge crosses a block of wall the wall half is still
+// interpolated; whatever no half interpolates is marched exactly. Blocks overhanging the image's
+// right or bottom edge are never smooth (their outside corners have no sample) and are split.
+// Deterministic (decisions use computed values only) and independent of the thread count.
+// block ≤ 1 or tolerance ≤ 0: every sample exactly.
 // What it costs in accuracy is measured against exact shading in bench_render (max and mean
 // deviation over the figure) and bounded in renderer_test.
 #include <cstdint>
