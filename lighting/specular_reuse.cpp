@@ -251,14 +251,16 @@ SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block
   // samples on the paper figure, most of them on edges of blocks that were smooth.)
   for (int round = 0; round < 4; ++round) {
     const int px = round % 2, py = round / 2;
+    const int cols = (nx - px + 1) / 2, rows = (ny - py + 1) / 2;  // blocks of this round
     run_with_threads(threads, [&] {
-      tbb::parallel_for(tbb::blocked_range<int>(0, (ny - py + 1) / 2, 1), [&](const tbb::blocked_range<int>& brows) {
+      // One task per block: their costs differ widely (a block of open wall is one check, one
+      // cut by windows is marched at a third of its pixels).
+      tbb::parallel_for(tbb::blocked_range<int>(0, cols * rows, 1), [&](const tbb::blocked_range<int>& blocks) {
         std::size_t marched = 0, interpolated = 0;
-        for (int j = brows.begin(); j != brows.end(); ++j) {
-          const int by = 2 * j + py;
-          for (int bx = px; bx < nx; bx += 2)
-            for (std::size_t i = 0; i < spp; ++i)
-              r.refine(bx * top, (bx + 1) * top, by * top, (by + 1) * top, i, kMinBlock, marched, interpolated);
+        for (int j = blocks.begin(); j != blocks.end(); ++j) {
+          const int bx = 2 * (j % cols) + px, by = 2 * (j / cols) + py;
+          for (std::size_t i = 0; i < spp; ++i)
+            r.refine(bx * top, (bx + 1) * top, by * top, (by + 1) * top, i, kMinBlock, marched, interpolated);
         }
         n_exact += marched;
         n_interp += interpolated;
