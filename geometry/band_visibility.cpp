@@ -256,7 +256,7 @@ struct BandVisibility::Impl {
       const int n = static_cast<int>(active.size());
       for (std::uint32_t t = 0; t < scene.soup().triangles.size(); ++t) process_triangle(t, 0, n);
     }
-    for (int i : active) finish_plane(planes[i]);
+    for (int i : active) finish_plane(planes[i], opt.tolerance > 0);
   }
 
   // Range [j0, j1) of active planes whose pseudo-angle lies in [plo, phi] (widened by a margin far
@@ -373,7 +373,7 @@ struct BandVisibility::Impl {
   }
 
   // Front-to-back order: the child whose box centre is nearer the point is popped first.
-  void push_children_near_first(const BvhNode& node) {
+  [[gnu::always_inline]] void push_children_near_first(const BvhNode& node) {
     const auto& nodes = scene.bvh_nodes();
     const std::uint32_t l = node.first, r = node.first + 1;
     const double dl = (nodes[l].box.centre() - p).squaredNorm();
@@ -547,14 +547,15 @@ struct BandVisibility::Impl {
   }
 
   // The line's visible α-intervals in radians (the gaps between occluded spans, each end
-  // converted once) and their uniform-sky integral ∫_visible sin²α dα.
-  static void finish_plane(Plane& pl) {
+  // converted once) and, when refining (`with_integral`), their uniform-sky integral
+  // ∫_visible sin²α dα, which only the refinement's error estimate reads.
+  static void finish_plane(Plane& pl, bool with_integral) {
     double f = 0, prev = 0;
     pl.visible.clear();
     // f integrates up to π itself at the far end (not to angle_of_pseudo(2)).
     auto gap = [&](double lo, double hi, bool last) {
       const double lo_rad = angle_of_pseudo(lo), hi_rad = angle_of_pseudo(hi);
-      f += uniform_sky_primitive(last ? kPi : hi_rad) - uniform_sky_primitive(lo_rad);
+      if (with_integral) f += uniform_sky_primitive(last ? kPi : hi_rad) - uniform_sky_primitive(lo_rad);
       const float a0 = static_cast<float>(lo_rad);
       const float a1 = static_cast<float>(hi_rad);
       if (a1 > a0) pl.visible.push_back({a0, a1});
