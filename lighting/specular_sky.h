@@ -367,7 +367,15 @@ void march(const PointContext& c, const Line& line, double alpha_star, double co
       if (dir > 0 ? i1 <= hi_cell : i0 >= lo_cell) idx += dir;
       else break;
     }
-    if (!any) cell_l = level_at(c, line, b, p, f, stats);  // wholly occluded: G decides whether to go on
+    if (!any) {  // wholly occluded: G at the far end decides whether to go on
+      if (whole) {  // cos, sin of b = mid + dir·step/2 by angle addition from the recurrence
+        const double hs = dir * cells.sin_half;
+        cell_l.g = integrand_cs(c, line, full_cm * cells.cos_half - full_sm * hs, full_sm * cells.cos_half + full_cm * hs, p,
+                                f, stats, &cell_l.x);
+      } else {
+        cell_l = level_at(c, line, b, p, f, stats);
+      }
+    }
     acc += cell;
     g_max = std::max(g_max, cell_l.g);
     raise(line_max, cell_l);
