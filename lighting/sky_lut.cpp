@@ -40,6 +40,23 @@ SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, 
       std::copy(acc.v.begin(), acc.v.end(), out + static_cast<std::size_t>(j + 1) * kSpectrumSamples);
     }
   }
+  tabulate_whole();
+}
+
+void SkyLut::tabulate_whole() {
+  const std::size_t c = static_cast<std::size_t>(channels_);
+  whole_.assign(lines_ * c, 0.0);
+  int j0, j1;
+  double t0, t1;
+  locate(0.0, j0, t0);
+  locate(kPi, j1, t1);
+  for (std::size_t l = 0; l < lines_; ++l) {
+    const double* a0 = row(l, j0);
+    const double* b0 = a0 + c;
+    const double* a1 = row(l, j1);
+    const double* b1 = a1 + c;
+    for (std::size_t i = 0; i < c; ++i) whole_[l * c + i] = (a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i]));
+  }
 }
 
 void SkyLut::locate(double alpha_rad, int& node, double& t) const {
@@ -70,10 +87,17 @@ SkyLut SkyLut::project(std::span<const Spectrum> weights) const {
       p.table_[n * weights.size() + k] = sum;
     }
   }
+  p.tabulate_whole();
   return p;
 }
 
 void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const {
+  const std::size_t nc = static_cast<std::size_t>(channels_);
+  if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
+    const double* w = &whole_[line * nc];
+    for (std::size_t i = 0; i < nc; ++i) acc[i] += weight * w[i];
+    return;
+  }
   int j0, j1;
   double t0, t1;
   locate(alpha0_rad, j0, t0);

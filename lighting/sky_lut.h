@@ -65,6 +65,9 @@ class SkyLut {
   }
   void locate(double alpha_rad, int& node, double& t) const;
   void require_spectral() const;
+  // whole_ = E_l(π) − E_l(0) per line and channel, by the same expression add_interval evaluates
+  // (so a whole visible line, the commonest interval, costs no look-up and gives the same bits).
+  void tabulate_whole();
 
   std::size_t lines_ = 0;
   int cells_ = 0;
@@ -72,6 +75,7 @@ class SkyLut {
   double step_rad_ = 0;
   std::vector<double> deltas_;
   std::vector<double> table_;  // [line][node 0..cells][channel]
+  std::vector<double> whole_;  // [line][channel]
 };
 
 // E(λ) of one cached point from a table built for its frame and bands (W·m⁻²·nm⁻¹).

@@ -210,3 +210,34 @@ BOOST_AUTO_TEST_CASE(bad_parameters_throw) {
   const std::vector<double> d{1.0};
   BOOST_CHECK_THROW(SkyLut lut(f, d, overcast_sky, -3), InputError);
 }
+
+// A whole visible line [0, π] is served from a per-line value (SkyLut::add_interval's fast path):
+// it must equal E_l(π) − E_l(0) from the interpolated primitive, the very expression the general
+// path evaluates (bit for bit: the same operations), for spectral and projected tables; and
+// splitting the line at any α telescopes to the same value within rounding (1e-12 relative).
+BOOST_AUTO_TEST_CASE(whole_line_fast_path_equals_the_general_expression) {
+  const BandFrame f = BandFrame::make(Vec3(0.3, -0.8, 0.5).normalized());
+  const std::vector<double> deltas = {0.1, 0.7, 1.3, 2.0};
+  const SkyLut lut(f, deltas, coloured_sky, 360);
+  const Spectrum w[2] = {Spectrum::constant(1.0), Spectrum::constant(0.5)};
+  const SkyLut projected = lut.project(w);
+  for (std::size_t l = 0; l < deltas.size(); ++l) {
+    Spectrum whole, e0, e1;
+    lut.add_interval(l, 0.0, kPi, 1.0, whole);
+    lut.primitive(l, kPi, e1);
+    lut.primitive(l, 0.0, e0);
+    for (int i = 0; i < kSpectrumSamples; ++i) BOOST_TEST(whole[i] == e1[i] - e0[i]);  // exact
+    for (double split : {0.3, 1.5707, 2.9}) {
+      Spectrum parts;
+      lut.add_interval(l, 0.0, split, 1.0, parts);
+      lut.add_interval(l, split, kPi, 1.0, parts);
+      for (int i = 0; i < kSpectrumSamples; ++i) BOOST_TEST(parts[i] == whole[i], tt::tolerance(1e-12));
+    }
+    double pw[2] = {0, 0}, pp[2] = {0, 0};
+    projected.add_interval(l, 0.0, kPi, 2.0, pw);
+    projected.add_interval(l, 0.0, 1.0, 2.0, pp);
+    projected.add_interval(l, 1.0, kPi, 2.0, pp);
+    for (int k = 0; k < 2; ++k) BOOST_TEST(pw[k] == pp[k], tt::tolerance(1e-12));
+    BOOST_TEST(pw[0] > 0.0);
+  }
+}
