@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
                   t_shade, pass.sun_seconds + t_sky + t_shade, cpu_shade);
     std::fflush(stdout);
     first = false;
-    std::printf("%-28s specular sky: %zu samples marched, %zu interpolated\n", "", L.specular_exact, L.specular_interpolated);
+    std::printf("%-28s specular sky: %zu samples marched (%.1f M integrand evaluations), %zu interpolated\n", "",
+                L.specular_exact, 1e-6 * static_cast<double>(L.specular_evaluations), L.specular_interpolated);
     if (check_reuse) {
       RenderSettings exact = rs;
       exact.specular_reuse_block = 1;

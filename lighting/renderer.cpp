@@ -260,15 +260,18 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
                         });
     });
   }
+  std::atomic<std::size_t> specular_evaluations{0};  // a sum over marched samples: order-independent
   const SpecularReuseStats reuse = shade_specular_with_reuse(
       pass, settings.specular_reuse_block, settings.specular_reuse_tolerance,
       [&](std::size_t k) { return material_of(k).has_specular(); },
       [&](std::size_t k) { return static_cast<int>(reuse_class[k]); },
       [&](std::size_t k) {
         const SurfaceSample& ss = pass.surfaces[k];
-        return specular_skies[slot_specular[ss.material_slot]]->radiance_xyz(pass.visibility.view(k), ss.view_dir,
-                                                             material_of(k).specular_lobe(settings.paper_scale),
-                                                             settings.specular);
+        SpecularSkyStats stats;
+        const Xyz x = specular_skies[slot_specular[ss.material_slot]]->radiance_xyz(
+            pass.visibility.view(k), ss.view_dir, material_of(k).specular_lobe(settings.paper_scale), settings.specular, &stats);
+        specular_evaluations.fetch_add(stats.radiance_evals, std::memory_order_relaxed);
+        return x;
       },
       settings.threads, specular_xyz);
   for (std::size_t k = 0; k < pass.surfaces.size(); ++k)
@@ -279,6 +282,7 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
   L.height = pass.height;
   L.specular_exact = reuse.exact;
   L.specular_interpolated = reuse.interpolated;
+  L.specular_evaluations = specular_evaluations.load();
   const std::size_t n_pixels = static_cast<std::size_t>(pass.width) * static_cast<std::size_t>(pass.height);
   for (auto* layer : {&L.sun_diffuse, &L.sun_specular, &L.sky_diffuse, &L.sky_specular, &L.total})
     layer->assign(n_pixels * 3, 0.0f);

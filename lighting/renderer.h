@@ -95,6 +95,7 @@ struct RenderLayers {
   std::vector<float> sun_diffuse, sun_specular, sky_diffuse, sky_specular, total;
   // Specular sky samples marched exactly / interpolated (specular_reuse.h).
   std::size_t specular_exact = 0, specular_interpolated = 0;
+  std::size_t specular_evaluations = 0;  // integrand evaluations of the marched samples (cost measure)
 };
 
 // The light of phase 2 as plain data: any sky radiance function (W·m⁻²·sr⁻¹·nm⁻¹, world
