@@ -32,13 +32,18 @@ std::vector<QueryPoint> city_points(const gen::City& city, std::size_t n) {
   return pts;
 }
 
+// A 3 × 3-block procedural city: small enough for many points, with streets and facades.
+gen::City small_city() {
+  gen::CityParams p;
+  p.blocks = 3;
+  return gen::make_city(p);
+}
+
 }  // namespace
 
 // Issue: "determinism across thread counts" — the cache is bit-identical for 1, 2 and 3 workers.
 BOOST_AUTO_TEST_CASE(bit_identical_across_thread_counts) {
-  gen::CityParams p;
-  p.blocks = 3;
-  const gen::City city = gen::make_city(p);
+  const gen::City city = small_city();
   const Scene scene(city.soup);
   const auto pts = city_points(city, 300);
   const VisibilityCache one = compute_visibility(scene, pts, {}, 1);
@@ -180,9 +185,7 @@ BOOST_AUTO_TEST_CASE(integrate_irradiance_closed_forms) {
 // normals (street and facade points), evaluated in sequence with shadow-ray queries in between,
 // give bit-identical bands and intervals to each point evaluated by a fresh instance.
 BOOST_AUTO_TEST_CASE(reused_state_does_not_change_results) {
-  gen::CityParams p;
-  p.blocks = 3;
-  const gen::City city = gen::make_city(p);
+  const gen::City city = small_city();
   const Scene scene(city.soup);
   const auto pts = city_points(city, 40);
   for (const double tolerance : {0.0, 5e-4}) {

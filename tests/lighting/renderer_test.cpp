@@ -68,6 +68,16 @@ bool all_finite(const RenderLayers& L) {
   return true;
 }
 
+// A camera at `position` looking at `look_at` (z up, default field of view), width × height pixels.
+CameraSpec camera_spec(const Vec3& position, const Vec3& look_at, int width, int height) {
+  CameraSpec cs;
+  cs.position = position;
+  cs.look_at = look_at;
+  cs.width = width;
+  cs.height = height;
+  return cs;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(sample_pattern_is_stratified_and_deterministic) {
@@ -112,12 +122,8 @@ BOOST_AUTO_TEST_CASE(white_plane_under_uniform_sky_has_radiance_rho_L) {
   // receives E = πL and reflects ρE/π = ρL. The sun is switched off (E_dn = 0).
   constexpr double kRho = 0.8, kL = 3.0;
   const Scene scene(ground_scene(1e4, false));
-  CameraSpec cs;
-  cs.position = Vec3(0, 0, 5);
-  cs.look_at = Vec3(0, 20, 0);  // looks down at the ground; upper rows see the sky
-  cs.width = 32;
-  cs.height = 24;
-  const PinholeCamera cam(cs);
+  // Looks down at the ground; upper rows see the sky.
+  const PinholeCamera cam(camera_spec(Vec3(0, 0, 5), Vec3(0, 20, 0), 32, 24));
   RenderSettings rs;
   rs.visibility.bands = 16;
   rs.visibility.tolerance = 0;
@@ -214,12 +220,7 @@ BOOST_AUTO_TEST_CASE(box_shadow_edge_is_where_geometry_puts_it) {
 
 BOOST_AUTO_TEST_CASE(physical_sky_images_are_finite_and_relighting_is_bit_identical) {
   const Scene scene(ground_scene(5000, true));
-  CameraSpec cs;
-  cs.position = Vec3(-6, -8, 1.6);
-  cs.look_at = Vec3(0, 0, 1);
-  cs.width = 40;
-  cs.height = 30;
-  const PinholeCamera cam(cs);
+  const PinholeCamera cam(camera_spec(Vec3(-6, -8, 1.6), Vec3(0, 0, 1), 40, 30));
   RenderSettings rs;
   rs.samples_per_pixel = 2;
   rs.visibility.bands = 16;
@@ -286,11 +287,7 @@ BOOST_AUTO_TEST_CASE(shade_refuses_a_stale_sun) {
 void check_specular_reuse(const char* ground_material, double min_share) {
   BOOST_TEST_CONTEXT("ground " << ground_material) {
     const Scene scene(ground_scene(60, true));
-    CameraSpec cs;
-    cs.position = Vec3(-7, -9, 2.5);
-    cs.look_at = Vec3(0, 0, 0.5);
-    cs.width = 96;
-    cs.height = 72;
+    const CameraSpec cs = camera_spec(Vec3(-7, -9, 2.5), Vec3(0, 0, 0.5), 96, 72);
     const PinholeCamera cam(cs);
     RenderSettings rs;
     rs.visibility.bands = 32;
