@@ -382,9 +382,17 @@ struct BandVisibility::Impl {
     stack.push_back(dl < dr ? l : r);
   }
 
-  void traverse() {
+  // What a BVH walk does with a node that passed the common culls.
+  enum class Visit { kSkip, kDescend, kStop };
+
+  // Front-to-back walk from the root. Nodes wholly below the horizon, behind the face plane or
+  // outside every sample half-plane are culled here; `visit(node, local_box, plo, phi)` (the
+  // node's pencil span) decides the rest: kDescend opens an inner node, kStop ends the walk.
+  // Returns true if the walk was stopped.
+  template <class F>
+  bool walk_bvh(F&& visit) {
     const auto& nodes = scene.bvh_nodes();
-    if (nodes.empty() || active.empty()) return;
+    if (nodes.empty()) return false;
     const double cb = std::cos(frame.beta_rad), sb = std::sin(frame.beta_rad);
     stack.clear();
     stack.push_back(0);
@@ -395,40 +403,65 @@ struct BandVisibility::Impl {
       if (!node_box(node, cb, sb, b)) continue;
       double plo, phi;
       if (!pencil_span(b.h_lo, b.h_hi, b.z_lo, b.z_hi, plo, phi)) continue;
+      const Visit v = visit(node, b, plo, phi);
+      if (v == Visit::kStop) return true;
+      if (v == Visit::kDescend && node.count == 0) push_children_near_first(node);
+    }
+    return false;
+  }
+
+  void traverse() {
+    if (active.empty()) return;
+    const auto& order = scene.bvh_triangle_order();
+    walk_bvh([&](const BvhNode& node, const LocalBox& b, double plo, double phi) {
       int j0, j1;
       plane_range(plo, phi, 0, static_cast<int>(active_keys.size()), j0, j1);
-      if (j0 >= j1) continue;
+      if (j0 >= j1) return Visit::kSkip;
       double alo, ahi;
-      if (!alpha_range(b, alo, ahi)) continue;  // only in the axis tails
-      if (covered_on_all(j0, j1, alo, ahi)) continue;
-      if (node.count > 0) {
-        const auto& order = scene.bvh_triangle_order();
-        // A leaf reaching few planes hands its ranges down: cheaper than each triangle's own.
-        // Not where the leaf's α-range was cut by an axis tail: whether a triangle lies wholly
-        // in a tail is decided on its own range, so the result does not depend on the BVH.
-        const bool own = j1 - j0 > kLeafOwnRanges || alo == tail_p || ahi == 2.0 - tail_p;
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1, own, alo, ahi);
-      } else {
-        push_children_near_first(node);
-      }
+      if (!alpha_range(b, alo, ahi)) return Visit::kSkip;  // only in the axis tails
+      if (covered_on_all(j0, j1, alo, ahi)) return Visit::kSkip;
+      if (node.count == 0) return Visit::kDescend;
+      // A leaf reaching few planes hands its ranges down: cheaper than each triangle's own.
+      // Not where the leaf's α-range was cut by an axis tail: whether a triangle lies wholly in
+      // a tail is decided on its own range, so the result does not depend on the BVH.
+      const bool own = j1 - j0 > kLeafOwnRanges || alo == tail_p || ahi == 2.0 - tail_p;
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) process_triangle(order[i], j0, j1, own, alo, ahi);
+      return Visit::kSkip;
+    });
+  }
+
+  // A triangle seen from the point: its vertices, their offsets d = V − P, the same in the local
+  // frame (L), and their global ids (canonical crossing order).
+  struct PointTriangle {
+    const Vec3* v[3];
+    Vec3 d[3], L[3];
+    std::uint32_t g[3];
+  };
+
+  // Fills `tr` for triangle t; false if it lies wholly at or below the point's horizon (exact:
+  // fl(a − b) keeps the sign of a − b), where it hides no sky.
+  bool point_triangle(std::uint32_t t, PointTriangle& tr) const {
+    const auto& soup = scene.soup();
+    const auto& tri = soup.triangles[t];
+    for (int k = 0; k < 3; ++k) tr.v[k] = &soup.vertices[tri[k]];
+    if (tr.v[0]->z() <= p.z() && tr.v[1]->z() <= p.z() && tr.v[2]->z() <= p.z()) return false;
+    for (int k = 0; k < 3; ++k) {
+      tr.d[k] = *tr.v[k] - p;
+      tr.L[k] = local_from_world * tr.d[k];
+      tr.g[k] = tri[k];
     }
+    return true;
   }
 
   // own_ranges = false: use the enclosing leaf's plane range [j0, j1) and α-range [alo, ahi]
   // (conservative for its triangles) instead of the triangle's own, tighter ones.
   void process_triangle(std::uint32_t t, int j0, int j1, bool own_ranges = true, double leaf_alo = 0, double leaf_ahi = 2) {
-    const auto& soup = scene.soup();
-    const auto& tri = soup.triangles[t];
-    const Vec3& v0 = soup.vertices[tri[0]];
-    const Vec3& v1 = soup.vertices[tri[1]];
-    const Vec3& v2 = soup.vertices[tri[2]];
-    // Exact: a triangle wholly at or below the point's horizon hides no sky (fl(a − b) keeps the
-    // sign of a − b, so this comparison is exact).
-    if (v0.z() <= p.z() && v1.z() <= p.z() && v2.z() <= p.z()) return;
+    PointTriangle tr;
+    if (!point_triangle(t, tr)) return;
     ++triangle_tests;
-    const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
-    Vec3 L[3];
-    for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
+    const Vec3* d = tr.d;
+    const Vec3* L = tr.L;
+    const std::uint32_t* g = tr.g;
     double alo = leaf_alo, ahi = leaf_ahi;
     int k0 = j0, k1 = j1;
     if (own_ranges) {
@@ -441,7 +474,6 @@ struct BandVisibility::Impl {
       plane_range(plo, phi, j0, j1, k0, k1);
       if (k0 >= k1) return;
     }
-    const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
     bool contributed = false;
     bool edge_on_checked = false;
     for (int j = k0; j < k1; ++j) {
@@ -452,7 +484,7 @@ struct BandVisibility::Impl {
         // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of
         // measure zero (this is also what keeps a face from hiding the sky above itself).
         // Tested lazily: most triangles that get this far are hidden on every plane anyway.
-        if (exact_orientation(v0, v1, v2, p) == 0) return;
+        if (exact_orientation(*tr.v[0], *tr.v[1], *tr.v[2], p) == 0) return;
         edge_on_checked = true;
       }
       double ea[2], eb[2];
@@ -792,54 +824,35 @@ struct BandVisibility::Impl {
   // the same predicates and constructions as process_triangle/add_segment, culling nodes and
   // triangles whose α-range cannot contain pa, and stops at the first span that contains it.
   bool plane_blocked_at(double pa) {
-    const auto& nodes = scene.bvh_nodes();
-    if (nodes.empty()) return false;
     const Plane& pl0 = planes[0];
     const ActivePlane pl{pl0.m, pl0.cosd, pl0.sind, nullptr};
-    const double cb = std::cos(frame.beta_rad), sb = std::sin(frame.beta_rad);
     constexpr double kMargin = 1e-9;  // as plane_range
-    const auto& soup = scene.soup();
     const auto& order = scene.bvh_triangle_order();
-    stack.clear();
-    stack.push_back(0);
-    while (!stack.empty()) {
-      const BvhNode& node = nodes[stack.back()];
-      stack.pop_back();
-      LocalBox b;
-      if (!node_box(node, cb, sb, b)) continue;
-      double plo, phi, alo, ahi, rlo, rhi;
-      if (!pencil_span(b.h_lo, b.h_hi, b.z_lo, b.z_hi, plo, phi)) continue;
-      if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
-      if (!alpha_range(b, alo, ahi, &rlo, &rhi)) continue;
-      if (pa < rlo || pa > rhi) continue;
-      if (node.count == 0) {
-        push_children_near_first(node);
-        continue;
-      }
+    // The sample plane inside the conservative pencil span [plo, phi], and pa inside the
+    // α-range of the box before its axis-tail clip (false: cannot hide pa, or only in a tail).
+    auto may_hide = [&](const LocalBox& b, double plo, double phi) {
+      if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) return false;
+      double alo, ahi, rlo, rhi;
+      return alpha_range(b, alo, ahi, &rlo, &rhi) && pa >= rlo && pa <= rhi;
+    };
+    return walk_bvh([&](const BvhNode& node, const LocalBox& b, double plo, double phi) {
+      if (!may_hide(b, plo, phi)) return Visit::kSkip;
+      if (node.count == 0) return Visit::kDescend;
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        const auto& tri = soup.triangles[order[i]];
-        const Vec3& v0 = soup.vertices[tri[0]];
-        const Vec3& v1 = soup.vertices[tri[1]];
-        const Vec3& v2 = soup.vertices[tri[2]];
-        if (v0.z() <= p.z() && v1.z() <= p.z() && v2.z() <= p.z()) continue;
-        const Vec3 d[3] = {v0 - p, v1 - p, v2 - p};
-        Vec3 L[3];
-        for (int k = 0; k < 3; ++k) L[k] = local_from_world * d[k];
+        PointTriangle tr;
+        if (!point_triangle(order[i], tr)) continue;
         LocalBox tb;
-        triangle_hz(L, tb);
-        if (!pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, plo, phi)) continue;
-        if (pl0.pdelta < plo - kMargin || pl0.pdelta > phi + kMargin) continue;
-        triangle_x(L, tb);
-        if (!alpha_range(tb, alo, ahi, &rlo, &rhi)) continue;
-        if (pa < rlo || pa > rhi) continue;
-        if (exact_orientation(v0, v1, v2, p) == 0) continue;
-        const std::uint32_t g[3] = {tri[0], tri[1], tri[2]};
+        triangle_hz(tr.L, tb);
+        triangle_x(tr.L, tb);
+        double tlo, thi;
+        if (!pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, tlo, thi) || !may_hide(tb, tlo, thi)) continue;
+        if (exact_orientation(*tr.v[0], *tr.v[1], *tr.v[2], p) == 0) continue;
         double ea[2], eb[2], lo, hi;
-        if (!crossing_segment(pl, d, L, g, ea, eb)) continue;
-        if (segment_span(ea[0], eb[0], ea[1], eb[1], lo, hi) && lo <= pa && pa <= hi) return true;
+        if (!crossing_segment(pl, tr.d, tr.L, tr.g, ea, eb)) continue;
+        if (segment_span(ea[0], eb[0], ea[1], eb[1], lo, hi) && lo <= pa && pa <= hi) return Visit::kStop;
       }
-    }
-    return false;
+      return Visit::kSkip;
+    });
   }
 
   void single_plane(const QueryPoint& q, double delta) {
