@@ -1,6 +1,5 @@
 #include "lighting/renderer.h"
 
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -192,22 +191,9 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         // Consecutive samples mostly lie on one plane and share its diffuse table:
-                        // the last one is reused while the frame and the bands' sample planes are
-                        // bit-identical (the cache's own key, so the same table), sparing the
-                        // cache's hash over every band and its lock per sample.
+                        // the last one is kept while the cache would serve the same table.
                         std::shared_ptr<const SkyLut> memo_lut;
                         std::size_t memo_k = 0, memo_material = 0;
-                        const auto same_table = [&](std::size_t a, std::size_t b) {
-                          const PointVisibilityView va = pass.visibility.view(a), vb = pass.visibility.view(b);
-                          if (va.frame().normal != vb.frame().normal || va.frame().x != vb.frame().x ||
-                              va.band_count() != vb.band_count())
-                            return false;
-                          for (std::size_t i = 0; i < va.band_count(); ++i)
-                            if (std::bit_cast<std::uint32_t>(va.band(i).delta_rad) !=
-                                std::bit_cast<std::uint32_t>(vb.band(i).delta_rad))
-                              return false;
-                          return true;
-                        };
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const SurfaceSample& ss = pass.surfaces[k];
                           const Material& m = *slot_materials[ss.material_slot];
@@ -220,7 +206,8 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
                           if (m.specular_weight < 1.0) {
                             double xyz[3];
                             const std::size_t material = slot_diffuse[ss.material_slot];
-                            if (!memo_lut || material != memo_material || !same_table(k, memo_k)) {
+                            if (!memo_lut || material != memo_material ||
+                                !SkyLutCache::same_table(view, pass.visibility.view(memo_k))) {
                               memo_lut = luts.projected_for(view, material);
                               memo_material = material;
                             }

@@ -208,6 +208,13 @@ std::shared_ptr<const SkyLutCache::Entry> SkyLutCache::entry_for(const PointVisi
   return bucket.back();
 }
 
+bool SkyLutCache::same_table(const PointVisibilityView& a, const PointVisibilityView& b) {
+  if (a.frame().normal != b.frame().normal || a.frame().x != b.frame().x || a.band_count() != b.band_count()) return false;
+  for (std::size_t i = 0; i < a.band_count(); ++i)
+    if (std::bit_cast<std::uint32_t>(a.band(i).delta_rad) != std::bit_cast<std::uint32_t>(b.band(i).delta_rad)) return false;
+  return true;
+}
+
 std::size_t SkyLutCache::size() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return count_;

@@ -97,6 +97,10 @@ class SkyLutCache {
   // The table of v's frame and bands projected by weight set k.
   std::shared_ptr<const SkyLut> projected_for(const PointVisibilityView& v, std::size_t k);
   std::size_t size() const;
+  // True when a and b are served the same table: bit-identical frames and band planes (a
+  // sufficient condition, cheaper than a look-up). Lets a caller keep the last table for runs of
+  // samples on one plane, sparing the hash over every band and the lock.
+  static bool same_table(const PointVisibilityView& a, const PointVisibilityView& b);
 
  private:
   struct Entry {
