@@ -16,11 +16,10 @@ ColourSpecularSky::ColourSpecularSky(const SkyRadianceGrid& sky, const FresnelTa
   grid_ = sky.project(weights);
 }
 
-template <int R>
-Xyz ColourSpecularSky::integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-                                 const SpecularSkyOptions& opt, SpecularSkyStats& stats) const {
-  Policy<R> p{this};
-  const auto acc = specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats);
+namespace {
+template <int N>
+Xyz to_xyz(const ColourChannels<N>& acc) {
+  constexpr int R = N / 3;
   Xyz r;
   for (int j = 0; j < R; ++j) {
     r.X += acc.v[static_cast<std::size_t>(j)];
@@ -29,17 +28,81 @@ Xyz ColourSpecularSky::integrate(const PointVisibilityView& view, const Vec3& vi
   }
   return r;
 }
+}  // namespace
+
+template <int R>
+Xyz ColourSpecularSky::integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                                 const SpecularSkyOptions& opt, SpecularSkyStats& stats) const {
+  Policy<R> p{this};
+  return to_xyz(specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats));
+}
+
+// The AVX2 + FMA build: the same source, `flatten` inlining the whole march (the inline and
+// template functions of specular_sky.h, fast_exp.h, sky_radiance_grid.h) into this one function
+// compiled for the wider instruction set, so no out-of-line copy of a shared inline function
+// is ever compiled for AVX2 (which the linker could pick for callers on other processors).
+// Functions defined in .cpp files (the per-line and per-point set-up) stay calls to their
+// default builds. Only reached when uses_avx2().
+#if defined(__GNUC__) && defined(__x86_64__)
+#define SKYBAND_AVX2_DISPATCH 1
+template <int R>
+__attribute__((target("avx2,fma"), flatten)) Xyz ColourSpecularSky::integrate_avx2(
+    const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, const SpecularSkyOptions& opt,
+    SpecularSkyStats& stats) const {
+  Policy<R> p{this};
+  return to_xyz(specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats));
+}
+#else
+#define SKYBAND_AVX2_DISPATCH 0
+template <int R>
+Xyz ColourSpecularSky::integrate_avx2(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                                      const SpecularSkyOptions& opt, SpecularSkyStats& stats) const {
+  return integrate<R>(view, view_dir, lobe, opt, stats);
+}
+#endif
+
+bool ColourSpecularSky::uses_avx2() {
+#if SKYBAND_AVX2_DISPATCH
+  static const bool avx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  return avx2;
+#else
+  return false;
+#endif
+}
 
 Xyz ColourSpecularSky::radiance_xyz(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
                                     const SpecularSkyOptions& opt, SpecularSkyStats* stats_out) const {
+  return dispatch(view, view_dir, lobe, opt, stats_out, uses_avx2());
+}
+
+Xyz ColourSpecularSky::radiance_xyz_portable(const PointVisibilityView& view, const Vec3& view_dir,
+                                             const SpecularLobe& lobe, const SpecularSkyOptions& opt,
+                                             SpecularSkyStats* stats_out) const {
+  return dispatch(view, view_dir, lobe, opt, stats_out, false);
+}
+
+Xyz ColourSpecularSky::dispatch(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                                const SpecularSkyOptions& opt, SpecularSkyStats* stats_out, bool avx2) const {
   if (lobe.fresnel != fresnel_) throw std::logic_error("ColourSpecularSky: lobe with a different Fresnel table");
   SpecularSkyStats stats;
   Xyz r;
-  switch (rank_) {
-    case 1: r = integrate<1>(view, view_dir, lobe, opt, stats); break;
-    case 2: r = integrate<2>(view, view_dir, lobe, opt, stats); break;
-    case 3: r = integrate<3>(view, view_dir, lobe, opt, stats); break;
-    default: r = integrate<4>(view, view_dir, lobe, opt, stats); break;
+  if (avx2) {
+    switch (rank_) {
+      case 1: r = integrate_avx2<1>(view, view_dir, lobe, opt, stats); break;
+      case 2: r = integrate_avx2<2>(view, view_dir, lobe, opt, stats); break;
+      case 3: r = integrate_avx2<3>(view, view_dir, lobe, opt, stats); break;
+      default: r = integrate_avx2<4>(view, view_dir, lobe, opt, stats); break;
+    }
+  } else {
+    switch (rank_) {
+      case 1: r = integrate<1>(view, view_dir, lobe, opt, stats); break;
+      case 2: r = integrate<2>(view, view_dir, lobe, opt, stats); break;
+      case 3: r = integrate<3>(view, view_dir, lobe, opt, stats); break;
+      default: r = integrate<4>(view, view_dir, lobe, opt, stats); break;
+    }
   }
   if (stats_out) *stats_out = stats;
   return r;

@@ -49,6 +49,14 @@ class ColourSpecularSky {
 
   int rank() const { return rank_; }
 
+  // Whether radiance_xyz runs the AVX2 + FMA build of the march on this processor (runtime
+  // dispatch: results are deterministic on a given machine but may differ in the last bits
+  // between machines with and without it, FMA rounding once where the other rounds twice).
+  static bool uses_avx2();
+  // radiance_xyz on the default (portable) build whatever the processor: for tests and benchmarks.
+  Xyz radiance_xyz_portable(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                            const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats = nullptr) const;
+
   // The reflection policy of specular_sky.h for Fresnel rank R (public for the march template).
   template <int R>
   struct Policy {
@@ -81,6 +89,13 @@ class ColourSpecularSky {
   template <int R>
   Xyz integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
                 const SpecularSkyOptions& opt, SpecularSkyStats& stats) const;
+  // The same march compiled for AVX2 + FMA (specular_sky_colour.cpp), used when the processor
+  // has them (checked once at run time).
+  template <int R>
+  Xyz integrate_avx2(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                     const SpecularSkyOptions& opt, SpecularSkyStats& stats) const;
+  Xyz dispatch(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+               const SpecularSkyOptions& opt, SpecularSkyStats* stats_out, bool avx2) const;
 
   const FresnelTable* fresnel_ = nullptr;
   std::shared_ptr<const FresnelFactors> factors_;  // nullptr: F = 1
