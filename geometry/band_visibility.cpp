@@ -896,15 +896,13 @@ std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle
 std::size_t BandVisibility::last_plane_count() const { return impl_->plane_count; }
 
 namespace {
-
-// Runs the points in chunks of kChunk over `threads` workers (one BandVisibility each) and hands
-// every finished chunk's cache to consume(chunk_index, cache). Each point is computed alone, so
-// the results do not depend on the thread count.
+// Points per chunk: large enough to amortise the hand-over, small enough to balance two cores.
 constexpr std::size_t kChunk = 256;
+}  // namespace
 
-template <class Consume>
-void for_each_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
-                    int threads, const std::function<void(std::size_t, std::size_t)>& progress, Consume&& consume) {
+void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                               int threads, const std::function<void(std::size_t, std::size_t)>& progress,
+                               const VisibilityChunkConsumer& consume) {
   const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
   tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
   std::atomic<std::size_t> done{0};
@@ -921,7 +919,7 @@ void for_each_chunk(const Scene& scene, std::span<const QueryPoint> points, cons
         worker->compute(points[i], result);
         part.append(result);
       }
-      consume(c, std::move(part));
+      consume(first, part, *worker);
       const std::size_t now = done += (last - first);
       if (progress) {
         std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -935,14 +933,12 @@ void for_each_chunk(const Scene& scene, std::span<const QueryPoint> points, cons
   if (progress) progress(points.size(), points.size());
 }
 
-}  // namespace
-
 VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
                                    const VisibilityOptions& options, int threads,
                                    const std::function<void(std::size_t, std::size_t)>& progress) {
   std::vector<VisibilityCache> parts((points.size() + kChunk - 1) / kChunk);
-  for_each_chunk(scene, points, options, threads, progress,
-                 [&](std::size_t c, VisibilityCache&& part) { parts[c] = std::move(part); });
+  for_each_visibility_chunk(scene, points, options, threads, progress,
+                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) { parts[first / kChunk] = std::move(part); });
   VisibilityCache cache;
   std::size_t bands = 0;
   for (const auto& part : parts) bands += part.bands().size();
@@ -955,12 +951,13 @@ std::vector<SkyFactors> compute_sky_factors(const Scene& scene, std::span<const 
                                             const VisibilityOptions& options, int threads,
                                             const std::function<void(std::size_t, std::size_t)>& progress) {
   std::vector<SkyFactors> out(points.size());
-  for_each_chunk(scene, points, options, threads, progress, [&](std::size_t c, VisibilityCache&& part) {
-    for (std::size_t i = 0; i < part.size(); ++i) {
-      const PointVisibilityView v = part.view(i);
-      out[c * kChunk + i] = SkyFactors{sky_view_factor(v), sky_exposure(v)};
-    }
-  });
+  for_each_visibility_chunk(scene, points, options, threads, progress,
+                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) {
+                              for (std::size_t i = 0; i < part.size(); ++i) {
+                                const PointVisibilityView v = part.view(i);
+                                out[first + i] = SkyFactors{sky_view_factor(v), sky_exposure(v)};
+                              }
+                            });
   return out;
 }
 

@@ -99,4 +99,18 @@ VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoin
                                    const VisibilityOptions& options, int threads = 0,
                                    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+// The streaming form of the two functions above, for consumers that need more than the two
+// uniform-sky numbers but not the whole cache at once (memory O(chunk), not O(points × bands)):
+// the points are computed in chunks of consecutive points on `threads` workers, and each finished
+// chunk is handed to `consume(first_point, chunk, worker)` on the worker's thread — concurrently
+// for different chunks, in no particular order. `chunk.view(i)` is point first_point + i; each
+// point is computed alone, so the chunk does not depend on the thread count. `worker` is that
+// thread's BandVisibility (e.g. for sun-shadow tests of the chunk's points; its per-point state
+// is no longer needed). The consumer may move the chunk away. `progress(done, total)` is called
+// from one thread.
+using VisibilityChunkConsumer = std::function<void(std::size_t first_point, VisibilityCache& chunk, BandVisibility& worker)>;
+void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                               int threads, const std::function<void(std::size_t, std::size_t)>& progress,
+                               const VisibilityChunkConsumer& consume);
+
 }  // namespace skyband
