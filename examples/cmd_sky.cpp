@@ -30,53 +30,25 @@
 #include <nlohmann/json.hpp>
 
 #include "examples/command_registry.h"
+#include "examples/sun_sky_options.h"
 #include "geometry/input_error.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
 #include "lighting/colour.h"
 #include "lighting/sky_model.h"
-#include "lighting/sun.h"
-#include "lighting/sun_position.h"
 
 namespace skyband::cli {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
-
 struct SkyOptions {
-  double sun_altitude_deg = 0, sun_azimuth_deg = 180;
-  double lat_deg = 0, lon_deg = 0, elevation_m = 0;
-  std::string time;
-  double tz_hours = 0, delta_t_s = 69.0, pressure_mbar = 1013.25, temperature_C = 15.0;
-  double aod550 = AtmosphereParams{}.aod550;
-  double angstrom_alpha = AtmosphereParams{}.angstrom_alpha;
-  double ozone_du = AtmosphereParams{}.ozone_du;
-  std::string model = "multiple";
-  double zenith_luminance = 0;
+  SunSkyOptions sun_sky;
   std::string out;
   int size = 512;
   double exposure = 0;
   bool half = false;
   bool json = false;
-  // Which options were given.
-  CLI::Option *o_alt = nullptr, *o_az = nullptr, *o_lat = nullptr, *o_lon = nullptr, *o_time = nullptr, *o_tz = nullptr,
-              *o_zl = nullptr, *o_exposure = nullptr;
+  CLI::Option* o_exposure = nullptr;
 };
-
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
-
-void require_finite(const char* flag, double v) {
-  if (!std::isfinite(v)) throw InputError(std::string(flag) + " " + fmt(v) + ": not a finite number");
-}
-
-void require_range(const char* flag, double v, double lo, double hi, const char* what) {
-  require_finite(flag, v);
-  if (v < lo || v > hi) throw InputError(std::string(flag) + " " + fmt(v) + ": " + what);
-}
 
 nlohmann::json xy_json(const Xyz& xyz) {
   const auto xy = chromaticity_xy(xyz);
@@ -92,79 +64,11 @@ nlohmann::json cct_json(const Xyz& xyz) {
   return *t;
 }
 
-struct SunPlacement {
-  double altitude_deg, azimuth_deg;
-  nlohmann::json source;
-};
-
-SunPlacement place_sun(const SkyOptions& o) {
-  const bool by_angle = o.o_alt->count() > 0 || o.o_az->count() > 0;
-  const bool by_place = o.o_lat->count() > 0 || o.o_lon->count() > 0 || o.o_time->count() > 0 || o.o_tz->count() > 0;
-  if (by_angle && by_place) throw InputError("give either --sun-altitude [--sun-azimuth] or --lat --lon --time, not both");
-  if (by_angle) {
-    if (o.o_alt->count() == 0) throw InputError("--sun-azimuth needs --sun-altitude");
-    require_range("--sun-altitude", o.sun_altitude_deg, -90.0, 90.0, "altitude must be in [-90, 90] degrees");
-    require_range("--sun-azimuth", o.sun_azimuth_deg, -360.0, 360.0, "azimuth must be in [-360, 360] degrees (clockwise from north)");
-    double az = std::fmod(o.sun_azimuth_deg, 360.0);
-    if (az < 0) az += 360.0;
-    return {o.sun_altitude_deg, az, {{"method", "given"}}};
-  }
-  if (!by_place) throw InputError("no sun: give --sun-altitude DEG [--sun-azimuth DEG] or --lat DEG --lon DEG --time ISO8601");
-  if (o.o_lat->count() == 0 || o.o_lon->count() == 0 || o.o_time->count() == 0)
-    throw InputError("sun from place and time needs all of --lat, --lon and --time");
-  require_range("--lat", o.lat_deg, -90.0, 90.0, "latitude must be in [-90, 90] degrees");
-  require_range("--lon", o.lon_deg, -180.0, 180.0, "longitude must be in [-180, 180] degrees (east positive)");
-  require_range("--tz", o.tz_hours, -18.0, 18.0, "UTC offset must be in [-18, 18] hours");
-  require_range("--delta-t", o.delta_t_s, -8000.0, 8000.0, "ΔT must be in [-8000, 8000] s");
-  require_range("--pressure-mbar", o.pressure_mbar, 1e-3, 5000.0, "pressure must be in (0, 5000] mbar");
-  require_range("--temperature-c", o.temperature_C, -272.0, 6000.0, "temperature must be above -273 °C");
-  SpaInput in;
-  in.latitude_deg = o.lat_deg;
-  in.longitude_deg = o.lon_deg;
-  in.elevation_m = o.elevation_m;
-  in.time = parse_iso8601(o.time, "--time", o.o_tz->count() ? std::optional<double>(o.tz_hours) : std::nullopt);
-  in.delta_t_s = o.delta_t_s;
-  in.pressure_mbar = o.pressure_mbar;
-  in.temperature_C = o.temperature_C;
-  const SpaResult r = sun_position_spa(in);
-  nlohmann::json src = {{"method", "NREL SPA (Reda & Andreas 2004)"},
-                        {"latitude_deg", o.lat_deg},
-                        {"longitude_deg", o.lon_deg},
-                        {"elevation_m", o.elevation_m},
-                        {"time", o.time},
-                        {"utc_offset_hours", in.time.utc_offset_hours},
-                        {"delta_t_s", o.delta_t_s},
-                        {"julian_day", r.julian_day},
-                        {"zenith_deg_refracted", r.zenith_deg},
-                        {"declination_deg", r.topocentric_declination_deg}};
-  return {90.0 - r.zenith_deg, r.azimuth_deg, src};
-}
-
 void run_sky(const SkyOptions& o) {
   // --- validate everything first (one place), then compute ----------------------------------
-  const SunPlacement sun = place_sun(o);
-  AtmosphereParams ap;
-  require_finite("--aod550", o.aod550);
-  require_finite("--angstrom-alpha", o.angstrom_alpha);
-  require_finite("--ozone-du", o.ozone_du);
-  require_finite("--elevation", o.elevation_m);
-  if (o.aod550 < 0) throw InputError("--aod550 " + fmt(o.aod550) + ": optical depth must be >= 0");
-  if (o.ozone_du < 0) throw InputError("--ozone-du " + fmt(o.ozone_du) + ": ozone column must be >= 0");
-  ap.aod550 = o.aod550;
-  ap.angstrom_alpha = o.angstrom_alpha;
-  ap.ozone_du = o.ozone_du;
-  ap.ground_elevation_m = o.elevation_m;
-  try {
-    ap.validate();
-  } catch (const InputError& e) {
-    throw InputError(std::string("atmosphere (--aod550/--angstrom-alpha/--ozone-du/--elevation): ") + e.what());
-  }
-  SkyModelSpec spec = parse_sky_model(o.model, "--model");
-  if (o.o_zl->count()) {
-    if (spec.physical) throw InputError("--zenith-luminance applies to CIE skies only, not --model " + o.model);
-    require_range("--zenith-luminance", o.zenith_luminance, 0.0, 1e7, "zenith luminance must be in [0, 1e7] cd/m2");
-    spec.zenith_luminance_cd_m2 = o.zenith_luminance;
-  }
+  const SunPlacement sun = o.sun_sky.place_sun();
+  const AtmosphereParams ap = o.sun_sky.atmosphere();
+  const SkyModelSpec spec = o.sun_sky.sky_spec();
   std::filesystem::path exr_path, png_path;
   if (!o.out.empty()) {
     exr_path = o.out;
@@ -178,7 +82,7 @@ void run_sky(const SkyOptions& o) {
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))
     throw InputError("--exposure " + fmt(o.exposure) + ": must be finite and > 0");
 
-  const Vec3 sun_dir = direction_from_altitude_azimuth(sun.altitude_deg * kDeg, sun.azimuth_deg * kDeg);
+  const Vec3 sun_dir = sun.direction();
   const SkyModel sky(ap, sun_dir, spec);
 
   // --- sun -----------------------------------------------------------------------------------
@@ -188,7 +92,7 @@ void run_sky(const SkyOptions& o) {
   const Spectrum diffuse = horizontal_irradiance([&](const Vec3& d, Spectrum& out) { sky.radiance_into(d, out); }, 180);
   const Spectrum zenith = sky.radiance(Vec3(0, 0, 1));
   const Xyz diffuse_xyz = spectrum_to_xyz(diffuse), zenith_xyz = spectrum_to_xyz(zenith);
-  const double sin_alt = std::max(0.0, std::sin(sun.altitude_deg * kDeg));
+  const double sin_alt = std::max(0.0, sun_dir.z());
   const Spectrum global = diffuse + dn * sin_alt;
   const Spectrum tau_r = sky.atmosphere().rayleigh_optical_depth();
   const auto grid_index = [](double nm) { return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm)); };
@@ -292,21 +196,7 @@ CLI::App* setup_sky(CLI::App& app) {
       "optional HDR fisheye image.\nConventions: world x east, y north, z up; azimuth in degrees clockwise from north; "
       "sun direction = (sin az cos alt, cos az cos alt, sin alt); altitudes are apparent (refracted).\n"
       "Fisheye (--out): equi-angular, zenith at the centre, north up, east left (sky seen from below).");
-  o->o_alt = sub->add_option("--sun-altitude", o->sun_altitude_deg, "Apparent sun altitude, degrees [-90, 90]");
-  o->o_az = sub->add_option("--sun-azimuth", o->sun_azimuth_deg, "Sun azimuth, degrees clockwise from north (default 180 = south)");
-  o->o_lat = sub->add_option("--lat", o->lat_deg, "Latitude, degrees north (with --lon, --time: NREL SPA)");
-  o->o_lon = sub->add_option("--lon", o->lon_deg, "Longitude, degrees east");
-  o->o_time = sub->add_option("--time", o->time, "Local time, ISO 8601: 2026-06-21T12:00:00+02:00, ...Z, or without offset plus --tz");
-  o->o_tz = sub->add_option("--tz", o->tz_hours, "UTC offset of --time in hours (east positive), when --time has none");
-  sub->add_option("--elevation", o->elevation_m, "Site elevation above sea level, metres (SPA parallax and atmosphere ground)");
-  sub->add_option("--delta-t", o->delta_t_s, "Delta T = TT - UT1, seconds (default 69)");
-  sub->add_option("--pressure-mbar", o->pressure_mbar, "Mean local pressure for SPA refraction, mbar (default 1013.25)");
-  sub->add_option("--temperature-c", o->temperature_C, "Mean local temperature for SPA refraction, deg C (default 15)");
-  sub->add_option("--aod550", o->aod550, "Aerosol optical depth at 550 nm (default 0.1)");
-  sub->add_option("--angstrom-alpha", o->angstrom_alpha, "Angstrom exponent (default 1.3)");
-  sub->add_option("--ozone-du", o->ozone_du, "Ozone column, Dobson units (default 300)");
-  sub->add_option("--model", o->model, "Sky model: single | multiple | cie-1 ... cie-15 | cie-overcast (default multiple)");
-  o->o_zl = sub->add_option("--zenith-luminance", o->zenith_luminance, "CIE skies: zenith luminance cd/m2 (default gensky-style formula)");
+  o->sun_sky.add_to(sub);
   sub->add_option("--out", o->out, "Write an HDR fisheye FILE.exr and a tone-mapped FILE.png beside it");
   sub->add_option("--size", o->size, "Fisheye image size in pixels (default 512)");
   o->o_exposure = sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic, log-average key 0.18)");

@@ -19,10 +19,10 @@
 
 #include "examples/command_registry.h"
 #include "examples/demo_scene.h"
+#include "examples/point_job_args.h"
 #include "geometry/band_visibility.h"
 #include "geometry/input_error.h"
 #include "geometry/sky_integral.h"
-#include "io/mesh_reader.h"
 #include "io/points_csv.h"
 
 namespace skyband::cli {
@@ -30,55 +30,8 @@ namespace skyband::cli {
 namespace {
 
 struct SvfArgs {
-  std::vector<std::string> meshes;
-  std::string points, out;
-  int bands = 0;
-  bool bands_given = false;
-  double tolerance = 0;
-  bool tolerance_given = false;
-  int threads = 0;
-  bool quiet = false;
+  PointJobArgs job;
   bool demo = false;
-};
-
-VisibilityOptions options_from(const SvfArgs& a) {
-  VisibilityOptions opt;
-  if (a.bands_given) {
-    if (a.bands < 1 || a.bands > 1000000)
-      throw InputError("--bands " + std::to_string(a.bands) + ": must be between 1 and 1000000");
-    opt.bands = a.bands;
-    opt.tolerance = 0;  // a fixed band count: the paper's method, no refinement
-  }
-  if (a.tolerance_given) {
-    if (!(a.tolerance > 0) || !std::isfinite(a.tolerance) || a.tolerance >= 1)
-      throw InputError("--tolerance " + std::to_string(a.tolerance) + ": must be a number in (0, 1) (absolute SVF error)");
-    opt.tolerance = a.tolerance;
-  }
-  if (a.threads < 0) throw InputError("--threads " + std::to_string(a.threads) + ": must be ≥ 0 (0 = all cores)");
-  return opt;
-}
-
-class Progress {
- public:
-  explicit Progress(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-  void operator()(std::size_t done, std::size_t total) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (done < total && elapsed - last_ < 0.5) return;
-    if (elapsed < 1.0 && done < total) return;  // short runs stay quiet
-    last_ = elapsed;
-    std::fprintf(stderr, "\rsvf: %zu / %zu points (%.0f%%), %.1f s", done, total, 100.0 * double(done) / double(total ? total : 1), elapsed);
-    if (done == total) std::fprintf(stderr, "\n");
-    printed_ = true;
-  }
-  bool printed() const { return printed_; }
-
- private:
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_;
-  double last_ = 0;
-  bool printed_ = false;
 };
 
 void run_demo(const SvfArgs& a) {
@@ -86,9 +39,9 @@ void run_demo(const SvfArgs& a) {
   const Scene scene(demo.soup);
   std::vector<QueryPoint> pts;
   for (const auto& p : demo.points) pts.push_back(p.point);
-  const VisibilityOptions opt = options_from(a);
+  const VisibilityOptions opt = a.job.visibility_options();
   const auto t0 = std::chrono::steady_clock::now();
-  const VisibilityCache cache = compute_visibility(scene, pts, opt, a.threads);
+  const VisibilityCache cache = compute_visibility(scene, pts, opt, a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points, %s\n",
               demo.soup.triangle_count(), pts.size(),
@@ -105,23 +58,15 @@ void run_demo(const SvfArgs& a) {
 
 void run(const SvfArgs& a) {
   if (a.demo) return run_demo(a);
-  if (a.meshes.empty()) throw InputError("svf: at least one --mesh FILE is required (or --demo)");
-  if (a.points.empty()) throw InputError("svf: --points FILE.csv is required");
-  if (a.out.empty()) throw InputError("svf: --out FILE.csv is required");
-  const VisibilityOptions opt = options_from(a);
-
-  TriangleSoup soup;
-  for (const std::string& file : a.meshes) {
-    MeshReadReport report;
-    soup.append(read_mesh(file, &report));
-    if (!a.quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
-  }
-  const PointsTable table = read_points_csv(a.points);
+  a.job.require_files("svf", " (or --demo)");
+  const VisibilityOptions opt = a.job.visibility_options();
+  TriangleSoup soup = a.job.load_meshes();
+  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
-  Progress progress(!a.quiet);
+  Progress progress("svf", !a.job.quiet);
   // Only the two numbers per point are kept (not the visibility cache): memory stays O(points).
-  const std::vector<SkyFactors> factors = compute_sky_factors(scene, table.points, opt, a.threads,
+  const std::vector<SkyFactors> factors = compute_sky_factors(scene, table.points, opt, a.job.threads,
                                                               [&](std::size_t d, std::size_t t) { progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -130,12 +75,12 @@ void run(const SvfArgs& a) {
     values[0][i] = factors[i].svf;
     values[1][i] = factors[i].sky_exposure;
   }
-  write_points_csv(a.out, table, {"svf", "sky_exposure"}, values);
-  if (!a.quiet) {
+  write_points_csv(a.job.out, table, {"svf", "sky_exposure"}, values);
+  if (!a.job.quiet) {
     const std::size_t n = table.points.size();
     const double mean = n ? std::accumulate(values[0].begin(), values[0].end(), 0.0) / double(n) : 0.0;
     std::fprintf(stderr, "svf: %zu points in %.2f s (%.0f points/s), mean svf %.4f; wrote %s\n", n, seconds,
-                 seconds > 0 ? double(n) / seconds : 0.0, mean, a.out.c_str());
+                 seconds > 0 ? double(n) / seconds : 0.0, mean, a.job.out.c_str());
   }
 }
 
@@ -146,21 +91,9 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
       "Sky view factor and sky exposure at calculation points (exact band-source visibility).\n"
       "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
       "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
-  cmd->add_option("--mesh", args->meshes, "Mesh file (OBJ, OFF, PLY, STL); repeat for several")->check(CLI::ExistingFile);
-  cmd->add_option("--points", args->points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
-  cmd->add_option("--out", args->out, "Output CSV (input rows + svf, sky_exposure), written atomically");
-  auto* bands = cmd->add_option("--bands", args->bands, "Fixed number of equal-weight bands (the paper's method, no refinement)");
-  auto* tol = cmd->add_option("--tolerance", args->tolerance,
-                              "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");
-  bands->excludes(tol);
-  cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores; results do not depend on it)");
-  cmd->add_flag("--quiet", args->quiet, "No progress or summary on stderr");
+  args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
-  cmd->callback([args, bands, tol] {
-    args->bands_given = bands->count() > 0;
-    args->tolerance_given = tol->count() > 0;
-    run(*args);
-  });
+  cmd->callback([args] { run(*args); });
   return cmd;
 }};
 

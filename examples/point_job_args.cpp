@@ -1,0 +1,71 @@
+// Options and progress shared by the per-point jobs (point_job_args.h).
+#include "examples/point_job_args.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "geometry/input_error.h"
+#include "io/mesh_reader.h"
+
+namespace skyband::cli {
+
+void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
+  cmd->add_option("--mesh", meshes, "Mesh file (OBJ, OFF, PLY, STL); repeat for several")->check(CLI::ExistingFile);
+  cmd->add_option("--points", points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
+  cmd->add_option("--out", out, out_help);
+  o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");
+  o_tolerance_ = cmd->add_option("--tolerance", tolerance_,
+                                 "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");
+  o_bands_->excludes(o_tolerance_);
+  cmd->add_option("--threads", threads, "Worker threads (0 = all cores; results do not depend on it)");
+  cmd->add_flag("--quiet", quiet, "No progress or summary on stderr");
+}
+
+VisibilityOptions PointJobArgs::visibility_options() const {
+  VisibilityOptions opt;
+  if (o_bands_ && o_bands_->count() > 0) {
+    if (bands_ < 1 || bands_ > 1000000)
+      throw InputError("--bands " + std::to_string(bands_) + ": must be between 1 and 1000000");
+    opt.bands = bands_;
+    opt.tolerance = 0;  // a fixed band count: the paper's method, no refinement
+  }
+  if (o_tolerance_ && o_tolerance_->count() > 0) {
+    if (!(tolerance_ > 0) || !std::isfinite(tolerance_) || tolerance_ >= 1)
+      throw InputError("--tolerance " + std::to_string(tolerance_) + ": must be a number in (0, 1) (absolute SVF error)");
+    opt.tolerance = tolerance_;
+  }
+  if (threads < 0) throw InputError("--threads " + std::to_string(threads) + ": must be ≥ 0 (0 = all cores)");
+  return opt;
+}
+
+void PointJobArgs::require_files(const std::string& command, const std::string& alternative) const {
+  if (meshes.empty()) throw InputError(command + ": at least one --mesh FILE is required" + alternative);
+  if (points.empty()) throw InputError(command + ": --points FILE.csv is required");
+  if (out.empty()) throw InputError(command + ": --out FILE.csv is required");
+}
+
+TriangleSoup PointJobArgs::load_meshes() const {
+  TriangleSoup soup;
+  for (const std::string& file : meshes) {
+    MeshReadReport report;
+    soup.append(read_mesh(file, &report));
+    if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
+  }
+  return soup;
+}
+
+void Progress::operator()(std::size_t done, std::size_t total) {
+  if (!enabled_ || finished_) return;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (done < total && elapsed - last_ < 0.5) return;
+  if (elapsed < 1.0 && done < total) return;  // short runs stay quiet
+  last_ = elapsed;
+  std::fprintf(stderr, "\r%s: %zu / %zu points (%.0f%%), %.1f s", label_.c_str(), done, total,
+               100.0 * double(done) / double(total ? total : 1), elapsed);
+  if (done == total) {
+    std::fprintf(stderr, "\n");
+    finished_ = true;
+  }
+}
+
+}  // namespace skyband::cli
