@@ -1,0 +1,56 @@
+#pragma once
+// Irradiance on the surface of calculation points — the data product of `skyband irradiance`
+// for daylight and urban-climate analysts: per point, on the plane of its normal n,
+//
+//   sky  E_sky = ∫_visible L(ω) (n·ω) dω = Σ_b w_b Σ_visible ∫ L(ω(α, δ_b)) sin²α dα   (seed eq. 1)
+//        over the point's visibility cache (exact occluded α-intervals, refined bands). The line
+//        integrals use the Gauss–Legendre quadrature of geometry/sky_integral.h
+//        (integrate_irradiance_channels) instead of per-band tables (sky_lut.h): a refined band
+//        layout differs from point to point, so per-layout tables would not be shared. L is the
+//        sky model resampled on the stereographic grid (sky_radiance_grid.h) and projected to
+//        two channels.
+//   sun  E_sun = E_n · (n·s) · V  where n·s > 0, else 0; E_n the direct-normal irradiance of the
+//        sun (SkyModel::sun_direct_normal) and V = 1 when the direction of the sun's centre is
+//        unoccluded (BandVisibility::direction_visible: the exact shadow test; the sun is a point).
+//
+// Channels: radiometric W·m⁻² over the model's 380–780 nm grid (trapezoid rule, as
+// Spectrum::integral_nm) and photometric lx (K_m·∫ E ȳ dλ, as colour.h luminous()).
+// Not included: light reflected by the ground and the buildings (the band method models the sky
+// and the sun only), and the sky below the horizon (SkyModel gives it zero radiance).
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "geometry/band_visibility.h"
+#include "lighting/sky_model.h"
+
+namespace skyband {
+
+struct PointIrradiance {
+  double svf = 0;            // cosine-weighted sky view factor (geometry/sky_integral.h)
+  double sky_exposure = 0;   // visible sky solid angle in front of the face / 2π
+  double cos_incidence = 0;  // n·s, the cosine of the sun's incidence angle (< 0: sun behind the face)
+  bool sun_visible = false;  // sun above the horizon, in front of the face and not hidden
+  double sky_W_m2 = 0;       // diffuse sky irradiance, W·m⁻² (380–780 nm)
+  double sun_W_m2 = 0;       // direct sun irradiance, W·m⁻² (380–780 nm)
+  double sky_lx = 0;         // diffuse sky illuminance, lx
+  double sun_lx = 0;         // direct sun illuminance, lx
+};
+
+struct PointIrradianceOptions {
+  VisibilityOptions visibility;
+  // Longest Gauss–Legendre piece along a visible interval (radians); see
+  // integrate_irradiance_channels. Measured against 0.0125 rad (bench_irradiance, physical sky
+  // with its aureole, city points): relative error 4e-6 at 0.05, 1e-5 at 0.2, 8e-5 at 0.4.
+  double max_step_rad = 0.2;
+  int threads = 0;  // 0 = all cores; the results do not depend on it
+};
+
+// Irradiance at every point under one sky and sun. Memory O(points): the visibility cache is
+// consumed chunk by chunk (for_each_visibility_chunk). `progress(done, total)` from one thread.
+std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points,
+                                                      const SkyModel& sky, const PointIrradianceOptions& options,
+                                                      const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace skyband

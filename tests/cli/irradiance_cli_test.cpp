@@ -1,0 +1,173 @@
+#define BOOST_TEST_MODULE irradiance_cli
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/support/cli_runner.h"
+
+namespace tt = boost::test_tools;
+namespace fs = std::filesystem;
+using skyband::test::run_skyband;
+
+namespace {
+
+// A closed 10 m cube [0,10]³ as OBJ quads (our own geometry).
+void write_cube(const fs::path& file) {
+  std::ofstream f(file);
+  for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
+  f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+}
+
+// Single-quoted for the shell (built with += : GCC 12 warns falsely on "'" + s + "'" here).
+std::string q(const fs::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string c;
+  while (std::getline(ss, c, ',')) cells.push_back(c);
+  return cells;
+}
+
+// Rows of a CSV without quoted cells, as column name → text.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
+  std::ifstream f(file);
+  std::string line;
+  std::getline(f, line);
+  const auto header = split(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(f, line)) {
+    const auto cells = split(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double num(const std::map<std::string, std::string>& row, const std::string& column) {
+  const auto it = row.find(column);
+  BOOST_TEST_REQUIRE((it != row.end()), "missing column " << column);
+  return std::stod(it->second);
+}
+
+}  // namespace
+
+// End to end against `skyband sky --json` (an independent path: the sky's horizontal diffuse
+// irradiance by hemisphere quadrature, no visibility) and closed-form geometry: the cube's top
+// face is open (sky = horizontal diffuse within 3e-3, the two quadratures' resolution of the
+// circumsolar peak; sun = E_n·sin 30°); a ground point 17 m north of the cube is in its shadow
+// (shadow length 10 m / tan 30° = 17.32 m); columns appended after the pass-through ones.
+BOOST_AUTO_TEST_CASE(end_to_end_against_the_sky_command) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_e2e");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\n"
+                                  "top,5,5,10,0,0,1\n"
+                                  "shadow,5,27,0,0,0,1\n"
+                                  "southwall,5,0,5,0,-1,0\n";
+  const std::string sun = " --sun-altitude 30 --sun-azimuth 180";
+  const auto r = run_skyband("irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                             q(d / "out.csv") + sun + " --threads 2");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  std::ifstream f(d / "out.csv");
+  std::string header;
+  std::getline(f, header);
+  BOOST_TEST(header ==
+             "id,x,y,z,nx,ny,nz,svf,sky_exposure,cos_incidence,sun_visible,sky_W_m2,sun_W_m2,global_W_m2,sky_lx,sun_lx,"
+             "global_lx");
+  const auto rows = read_csv(d / "out.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 3u);
+
+  const auto s = run_skyband("sky" + sun + " --json");
+  BOOST_TEST_REQUIRE(s.exit_code == 0, s.err);
+  const auto j = nlohmann::json::parse(s.out);
+  const double diffuse = j["sky"]["horizontal_diffuse_irradiance_W_m2"].get<double>();
+  const double diffuse_lx = j["sky"]["horizontal_diffuse_illuminance_lx"].get<double>();
+  const double dn = j["sun"]["direct_normal_irradiance_W_m2"].get<double>();
+  const double sin30 = 0.5, cos30 = std::sqrt(3.0) / 2;
+
+  const auto& top = rows[0];
+  BOOST_TEST(num(top, "svf") == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(num(top, "sky_W_m2") == diffuse, tt::tolerance(3e-3));
+  BOOST_TEST(num(top, "sky_lx") == diffuse_lx, tt::tolerance(3e-3));
+  BOOST_TEST(num(top, "sun_visible") == 1.0);
+  BOOST_TEST(num(top, "sun_W_m2") == dn * sin30, tt::tolerance(1e-9));
+  BOOST_TEST(num(top, "global_W_m2") == num(top, "sky_W_m2") + num(top, "sun_W_m2"), tt::tolerance(1e-12));
+  BOOST_TEST(num(top, "global_lx") == num(top, "sky_lx") + num(top, "sun_lx"), tt::tolerance(1e-12));
+
+  const auto& shadow = rows[1];
+  BOOST_TEST(num(shadow, "sun_visible") == 0.0);
+  BOOST_TEST(num(shadow, "sun_W_m2") == 0.0);
+  BOOST_TEST(num(shadow, "sky_W_m2") > 0.0);
+  BOOST_TEST(num(shadow, "sky_W_m2") < num(top, "sky_W_m2"));
+
+  const auto& wall = rows[2];
+  BOOST_TEST(num(wall, "cos_incidence") == cos30, tt::tolerance(1e-9));
+  BOOST_TEST(num(wall, "sun_W_m2") == dn * cos30, tt::tolerance(1e-9));
+  BOOST_TEST(num(wall, "svf") == 0.5, tt::tolerance(1e-9));
+}
+
+// The sun from place and time (NREL SPA) gives the same sun as `skyband sky` for that moment:
+// a horizontal open face receives E_n·sin(altitude) with the altitude `sky` reports.
+BOOST_AUTO_TEST_CASE(sun_from_place_and_time) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_spa");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
+  const std::string when = " --lat 48.14 --lon 11.58 --time 2026-06-21T15:00:00+02:00";
+  const auto r = run_skyband("irradiance --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") +
+                             " --out " + q(d / "out.csv") + when);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.empty());
+  const auto s = run_skyband("sky" + when + " --json");
+  BOOST_TEST_REQUIRE(s.exit_code == 0, s.err);
+  const auto j = nlohmann::json::parse(s.out);
+  const double alt = j["sun"]["altitude_deg"].get<double>() * M_PI / 180;
+  const double dn = j["sun"]["direct_normal_irradiance_W_m2"].get<double>();
+  const auto rows = read_csv(d / "out.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 1u);
+  BOOST_TEST(num(rows[0], "cos_incidence") == std::sin(alt), tt::tolerance(1e-9));
+  BOOST_TEST(num(rows[0], "sun_W_m2") == dn * std::sin(alt), tt::tolerance(1e-9));
+}
+
+// Bad input: one line naming the flag, file or value, exit code 2, no output file left.
+BOOST_AUTO_TEST_CASE(bad_input_errors) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_errors");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "ok.csv") << "x,y,z\n1,2,30\n";
+  std::ofstream(d / "nan.csv") << "x,y,z\n1,nan,3\n";
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --out " + q(d / "out.csv");
+  const std::string pts = " --points " + q(d / "ok.csv");
+  struct Case {
+    std::string args, must_mention;
+  };
+  const Case cases[] = {
+      {base + pts, "no sun"},
+      {base + pts + " --sun-altitude 95", "--sun-altitude 95"},
+      {base + pts + " --sun-altitude 30 --lat 10 --lon 10 --time 2026-01-01T12:00:00Z", "not both"},
+      {base + pts + " --lat 10 --time 2026-01-01T12:00:00Z", "--lon"},
+      {base + pts + " --sun-altitude 30 --aod550 -1", "--aod550"},
+      {base + pts + " --sun-altitude 30 --model cie-16", "cie-16"},
+      {base + pts + " --sun-altitude 30 --zenith-luminance 5000", "--zenith-luminance"},
+      {base + pts + " --sun-altitude 30 --bands 0", "--bands"},
+      {base + " --points " + q(d / "absent.csv") + " --sun-altitude 30", "absent.csv"},
+      {base + " --points " + q(d / "nan.csv") + " --sun-altitude 30", "nan.csv"},
+      {"irradiance --mesh " + q(d / "cube.obj") + pts + " --sun-altitude 30", "--out"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_skyband(c.args);
+    BOOST_TEST_INFO(c.args);
+    BOOST_TEST(r.exit_code == 2);
+    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
+    BOOST_TEST(!fs::exists(d / "out.csv"));
+  }
+}

@@ -1,0 +1,198 @@
+#define BOOST_TEST_MODULE point_irradiance
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "geometry/input_error.h"
+#include "geometry/sky_integral.h"
+#include "lighting/colour.h"
+#include "lighting/point_irradiance.h"
+#include "lighting/sun.h"
+
+namespace tt = boost::test_tools;
+using namespace skyband;
+
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+
+SkyModel make_sky(double altitude_deg, double azimuth_deg, const std::string& model) {
+  return SkyModel(AtmosphereParams{}, direction_from_altitude_azimuth(altitude_deg * kDeg, azimuth_deg * kDeg),
+                  parse_sky_model(model, "--model"));
+}
+
+// A closed 10 m cube [0,10]³ (our own geometry).
+TriangleSoup cube() {
+  TriangleSoup soup;
+  append_box(soup, Vec3(0, 0, 0), Vec3(10, 10, 10));
+  return soup;
+}
+
+QueryPoint at(double x, double y, double z, Vec3 n = Vec3(0, 0, 1)) { return QueryPoint{Vec3(x, y, z), n.normalized()}; }
+
+}  // namespace
+
+// CIE standard overcast sky, L = L_z(1 + 2 sin e)/3 (e = elevation): closed forms
+// E_h = (7π/9)·L_z on an open horizontal face and E_v = (π/6 + 4/9)·L_z on an open wall
+// (∫ over the front hemisphere above the horizon: (1/3)·(π/2) + (2/3)·2·∫₀^{π/2} sin e cos²e de).
+// Tolerance 1e-3: the sky is resampled on the stereographic grid (bilinear, error ~h²/8·|L''|
+// with h ≈ 0.3–0.6°) and the points' band quadrature carries the refinement error (≤ 5e-4).
+BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
+  const SkyModel sky = make_sky(35, 180, "cie-overcast");
+  const Spectrum lz = sky.radiance(Vec3(0, 0, 1));
+  const Scene scene(cube());
+  const std::vector<QueryPoint> pts = {at(5, 5, 10),                      // the cube's top face: open horizontal
+                                       at(-0.0, 5, 5, Vec3(-1, 0, 0)),   // its west wall: open wall
+                                       at(3000, 3000, 0)};                 // far away on the ground
+  const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
+  const double eh = 7 * kPi / 9, ev = kPi / 6 + 4.0 / 9;
+  BOOST_TEST(r[0].sky_W_m2 == eh * lz.integral_nm(), tt::tolerance(1e-3));
+  BOOST_TEST(r[0].sky_lx == eh * luminous(lz), tt::tolerance(1e-3));
+  BOOST_TEST(r[1].sky_W_m2 == ev * lz.integral_nm(), tt::tolerance(1e-3));
+  BOOST_TEST(r[1].sky_lx == ev * luminous(lz), tt::tolerance(1e-3));
+  BOOST_TEST(r[2].sky_W_m2 == eh * lz.integral_nm(), tt::tolerance(1e-3));
+  // The overcast sky hides the sun (cie_sky.h): no direct term anywhere.
+  for (const auto& x : r) {
+    BOOST_TEST(!x.sun_visible);
+    BOOST_TEST(x.sun_W_m2 == 0.0);
+  }
+}
+
+// CIE type 5 is the sky of uniform luminance (a = 0, c = 0, e = 0: L = L_z everywhere above the
+// horizon), so E_sky = π·L_z·SVF exactly, with the SVF of the same cache (closed-form primitive,
+// geometry/sky_integral.h): an identity for any occlusion. Random points around random boxes.
+// Tolerance 2e-5: a constant is interpolated exactly by the grid; the Gauss–Legendre pieces
+// integrate sin²α to ~1e-13; what remains is the grid's float storage (~6e-8 relative) and the
+// interval ends stored as float.
+BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
+  TriangleSoup soup;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 12; ++i) {
+    const Vec3 lo(60 * u(rng) - 30, 60 * u(rng) - 30, 0);
+    append_box(soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
+  }
+  const Scene scene(soup);
+  std::vector<QueryPoint> pts;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
+    pts.push_back(at(70 * u(rng) - 35, 70 * u(rng) - 35, 6 * u(rng), n));
+  }
+  const SkyModel sky = make_sky(40, 200, "cie-5");
+  const double lz = sky.radiance(Vec3(0, 0, 1)).integral_nm();
+  BOOST_TEST_REQUIRE(lz > 0);
+  BOOST_TEST(sky.radiance(Vec3(0.8, 0, 0.6)).integral_nm() == lz, tt::tolerance(1e-12));  // uniform indeed
+  const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
+  int occluded = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    BOOST_TEST(r[i].sky_W_m2 == kPi * lz * r[i].svf, tt::tolerance(2e-5));
+    occluded += r[i].svf < (1 + pts[i].normal.z()) / 2 - 1e-3;
+  }
+  BOOST_TEST(occluded > 10);  // the identity was tested on occluded points, not only open ones
+}
+
+// An open horizontal face under the physical sky: the diffuse term equals the sky's horizontal
+// irradiance by an independent quadrature (SkyModel horizontal_irradiance: midpoint rule on
+// 0.5° cells of the hemisphere, no visibility), and the sun term is E_n·sin(altitude).
+// Tolerance 3e-3 on the sky: both quadratures resolve the circumsolar peak only to ~0.5°.
+BOOST_AUTO_TEST_CASE(open_horizontal_face_under_the_physical_sky) {
+  const double alt = 30;
+  const SkyModel sky = make_sky(alt, 180, "multiple");
+  const Scene scene(cube());
+  const auto r = compute_point_irradiance(scene, std::vector<QueryPoint>{at(5, 5, 10)}, sky, PointIrradianceOptions{});
+  const Spectrum eh = horizontal_irradiance([&](const Vec3& d, Spectrum& s) { sky.radiance_into(d, s); }, 180);
+  BOOST_TEST(r[0].sky_W_m2 == eh.integral_nm(), tt::tolerance(3e-3));
+  BOOST_TEST(r[0].sky_lx == luminous(eh), tt::tolerance(3e-3));
+  const Spectrum& dn = sky.sun_direct_normal();
+  BOOST_TEST_REQUIRE(dn.integral_nm() > 100);
+  BOOST_TEST(r[0].sun_visible);
+  BOOST_TEST(r[0].cos_incidence == std::sin(alt * kDeg), tt::tolerance(1e-12));
+  BOOST_TEST(r[0].sun_W_m2 == dn.integral_nm() * std::sin(alt * kDeg), tt::tolerance(1e-12));
+  BOOST_TEST(r[0].sun_lx == luminous(dn) * std::sin(alt * kDeg), tt::tolerance(1e-12));
+}
+
+// The cube's shadow on the ground: sun at 30° from the south (azimuth 180°), so a ground point
+// north of the cube at distance d from its north face is shadowed exactly when d·tan 30° < 10 m,
+// i.e. d < 17.32 m (closed-form geometry). Walls: the south wall sees the sun at cos i = cos 30°,
+// the north wall has the sun behind it.
+BOOST_AUTO_TEST_CASE(shadow_and_incidence_follow_the_geometry) {
+  const SkyModel sky = make_sky(30, 180, "multiple");
+  const Scene scene(cube());
+  const std::vector<QueryPoint> pts = {at(5, 10 + 17.0, 0), at(5, 10 + 17.7, 0), at(5, -3, 0),
+                                       at(5, -0.0, 5, Vec3(0, -1, 0)), at(5, 10, 5, Vec3(0, 1, 0))};
+  const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
+  const double dn = sky.sun_direct_normal().integral_nm();
+  BOOST_TEST(!r[0].sun_visible);
+  BOOST_TEST(r[0].sun_W_m2 == 0.0);
+  BOOST_TEST(r[0].sky_W_m2 > 0.0);
+  BOOST_TEST(r[1].sun_visible);
+  BOOST_TEST(r[1].sun_W_m2 == dn * 0.5, tt::tolerance(1e-12));
+  BOOST_TEST(r[2].sun_visible);  // south of the cube: in the sun
+  BOOST_TEST(r[3].sun_visible);
+  BOOST_TEST(r[3].cos_incidence == std::cos(30 * kDeg), tt::tolerance(1e-12));
+  BOOST_TEST(r[3].sun_W_m2 == dn * std::cos(30 * kDeg), tt::tolerance(1e-12));
+  BOOST_TEST(r[4].cos_incidence < 0.0);
+  BOOST_TEST(!r[4].sun_visible);
+  BOOST_TEST(r[4].sun_W_m2 == 0.0);
+  // The walls see half the open sky (SVF 0.5, geometry closed form) but not the same radiance:
+  // the south wall faces the sun's half of the sky.
+  BOOST_TEST(r[3].svf == 0.5, tt::tolerance(1e-9));
+  BOOST_TEST(r[4].svf == 0.5, tt::tolerance(1e-9));
+  BOOST_TEST(r[3].sky_W_m2 > r[4].sky_W_m2);
+}
+
+// Inside a closed box nothing arrives (the band core's exact zero, method.md §8), with any sun.
+BOOST_AUTO_TEST_CASE(inside_a_closed_box_everything_is_zero) {
+  const Scene scene(cube());
+  for (double alt : {5.0, 60.0}) {
+    const auto r = compute_point_irradiance(scene, std::vector<QueryPoint>{at(5, 5, 5), at(2, 3, 0.5, Vec3(1, 0, 0))},
+                                            make_sky(alt, 120, "multiple"), PointIrradianceOptions{});
+    for (const auto& x : r) {
+      BOOST_TEST(x.svf == 0.0);
+      BOOST_TEST(x.sky_W_m2 == 0.0);
+      BOOST_TEST(x.sky_lx == 0.0);
+      BOOST_TEST(!x.sun_visible);
+      BOOST_TEST(x.sun_W_m2 == 0.0);
+    }
+  }
+}
+
+// Below the horizon there is no direct sun, only twilight sky.
+BOOST_AUTO_TEST_CASE(sun_below_the_horizon_gives_no_direct_term) {
+  const Scene scene(cube());
+  const auto r = compute_point_irradiance(scene, std::vector<QueryPoint>{at(5, 5, 10)}, make_sky(-3, 270, "multiple"),
+                                          PointIrradianceOptions{});
+  BOOST_TEST(!r[0].sun_visible);
+  BOOST_TEST(r[0].sun_W_m2 == 0.0);
+  BOOST_TEST(std::isfinite(r[0].sky_W_m2));
+  BOOST_TEST(r[0].sky_W_m2 >= 0.0);
+}
+
+// Results do not depend on the thread count (each point computed alone; 600 points = 3 chunks).
+BOOST_AUTO_TEST_CASE(results_do_not_depend_on_threads) {
+  TriangleSoup soup = cube();
+  append_box(soup, Vec3(20, -5, 0), Vec3(26, 15, 18));
+  const Scene scene(soup);
+  std::vector<QueryPoint> pts;
+  for (int i = 0; i < 600; ++i) pts.push_back(at(-10 + 0.07 * i, -8 + 0.05 * i, 0.01 * (i % 7)));
+  const SkyModel sky = make_sky(25, 140, "multiple");
+  PointIrradianceOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const auto a = compute_point_irradiance(scene, pts, sky, one);
+  const auto b = compute_point_irradiance(scene, pts, sky, two);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    BOOST_TEST(a[i].sky_W_m2 == b[i].sky_W_m2);
+    BOOST_TEST(a[i].sun_W_m2 == b[i].sun_W_m2);
+    BOOST_TEST(a[i].svf == b[i].svf);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_quadrature_step_is_an_input_error) {
+  const Scene scene(cube());
+  PointIrradianceOptions o;
+  o.max_step_rad = 0;
+  BOOST_CHECK_THROW(compute_point_irradiance(scene, std::vector<QueryPoint>{at(5, 5, 10)}, make_sky(30, 180, "multiple"), o),
+                    InputError);
+}
