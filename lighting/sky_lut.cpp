@@ -59,12 +59,6 @@ void SkyLut::tabulate_whole() {
   }
 }
 
-void SkyLut::locate(double alpha_rad, int& node, double& t) const {
-  const double x = std::clamp(alpha_rad, 0.0, kPi) / step_rad_;
-  node = std::min(static_cast<int>(x), cells_ - 1);
-  t = std::min(x - node, 1.0);
-}
-
 void SkyLut::require_spectral() const {
   if (channels_ != kSpectrumSamples) throw std::logic_error("SkyLut: spectral access to a projected table");
 }
@@ -114,6 +108,14 @@ void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad
 void diffuse_sky_channels(const PointVisibilityView& v, const SkyLut& lut, double* out) {
   for (int k = 0; k < lut.channels(); ++k) out[k] = 0.0;
   const std::size_t n = std::min(v.band_count(), lut.line_count());
+  if (lut.channels() == 3) {  // XYZ: the renderer's tables
+    for (std::size_t b = 0; b < n; ++b) {
+      const double w = v.band_weight(b);
+      for (const VisibleInterval& iv : v.visible(b))
+        lut.add_interval_n<3>(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, out);
+    }
+    return;
+  }
   for (std::size_t b = 0; b < n; ++b) {
     const double w = v.band_weight(b);
     for (const VisibleInterval& iv : v.visible(b))

@@ -15,6 +15,7 @@
 // The tables depend only on the frame orientation (axis x, normal) and the band layout, never on
 // the point (the sky is at infinity), so SkyLutCache keys them on the quantised frame + the
 // bands' δ: a building with a few face orientations builds a few tables per sky.
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -56,6 +57,25 @@ class SkyLut {
   void add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, Spectrum& acc) const;
   // Any table: acc[k] += weight·(E_l(α1) − E_l(α0))[k], k < channels().
   void add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const;
+  // The same for a table of N == channels() channels, inline with the channel loop unrolled (the
+  // renderer's diffuse pass: ~5·10⁷ intervals per image); the same expression, so the same bits.
+  template <int N>
+  void add_interval_n(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const {
+    if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
+      const double* w = &whole_[line * N];
+      for (int i = 0; i < N; ++i) acc[i] += weight * w[i];
+      return;
+    }
+    int j0, j1;
+    double t0, t1;
+    locate(alpha0_rad, j0, t0);
+    locate(alpha1_rad, j1, t1);
+    const double* a0 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j0)) * N];
+    const double* b0 = a0 + N;
+    const double* a1 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j1)) * N];
+    const double* b1 = a1 + N;
+    for (int i = 0; i < N; ++i) acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+  }
 
  private:
   SkyLut() = default;
@@ -63,7 +83,11 @@ class SkyLut {
     return &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(node)) *
                    static_cast<std::size_t>(channels_)];
   }
-  void locate(double alpha_rad, int& node, double& t) const;
+  void locate(double alpha_rad, int& node, double& t) const {
+    const double x = std::clamp(alpha_rad, 0.0, kPi) / step_rad_;
+    node = std::min(static_cast<int>(x), cells_ - 1);
+    t = std::min(x - node, 1.0);
+  }
   void require_spectral() const;
   // whole_ = E_l(π) − E_l(0) per line and channel, by the same expression add_interval evaluates
   // (so a whole visible line, the commonest interval, costs no look-up and gives the same bits).

@@ -241,3 +241,37 @@ BOOST_AUTO_TEST_CASE(whole_line_fast_path_equals_the_general_expression) {
     BOOST_TEST(pw[0] > 0.0);
   }
 }
+
+// The unrolled 3-channel path (SkyLut::add_interval_n<3>, the renderer's diffuse pass) evaluates
+// the same expression as the general add_interval, so it must give the same bits, for whole
+// lines, partial intervals, ends at 0 or π and intervals inside one α cell; and
+// diffuse_sky_channels (which takes it for 3-channel tables) equals the band-by-band sum of
+// general add_interval calls exactly.
+BOOST_AUTO_TEST_CASE(three_channel_path_is_bit_identical) {
+  const Vec3 n = Vec3(0.3, -0.8, 0.5).normalized();
+  const VisibilityCache vc = single_point_cache(n, 24, [](int band, double delta) {
+    if (band % 5 == 2) return std::vector<std::pair<double, double>>{{0.0, kPi}};
+    return std::vector<std::pair<double, double>>{{0.0, 0.4 + 0.1 * delta}, {1.001, 1.003}, {2.2, kPi}};
+  });
+  const PointVisibilityView v = vc.view(0);
+  std::vector<double> deltas;
+  for (std::size_t b = 0; b < v.band_count(); ++b) deltas.push_back(v.band(b).delta_rad);
+  const SkyLut lut(v.frame(), deltas, coloured_sky, 360);
+  const Spectrum w[3] = {Spectrum::constant(1.0), Spectrum::constant(0.5), Spectrum::constant(0.25)};
+  const SkyLut projected = lut.project(w);
+  for (std::size_t l = 0; l < deltas.size(); ++l)
+    for (auto [a0, a1] : {std::pair{0.0, kPi}, std::pair{0.0, 0.7}, std::pair{0.5, kPi}, std::pair{1.0001, 1.0002},
+                          std::pair{0.3, 2.9}}) {
+      double g[3] = {0.1, 0.2, 0.3}, u[3] = {0.1, 0.2, 0.3};
+      projected.add_interval(l, a0, a1, 0.37, g);
+      projected.add_interval_n<3>(l, a0, a1, 0.37, u);
+      for (int k = 0; k < 3; ++k) BOOST_TEST(u[k] == g[k]);
+    }
+  double expected[3] = {0, 0, 0}, got[3];
+  for (std::size_t b = 0; b < v.band_count(); ++b)
+    for (const VisibleInterval& iv : v.visible(b))
+      projected.add_interval(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), v.band_weight(b), expected);
+  diffuse_sky_channels(v, projected, got);
+  for (int k = 0; k < 3; ++k) BOOST_TEST(got[k] == expected[k]);
+  BOOST_TEST(got[0] > 0.0);
+}
