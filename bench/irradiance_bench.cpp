@@ -2,7 +2,7 @@
 // procedural cities of bench_svf: points/s of the SVF alone and of the irradiance (SVF + sky
 // quadrature + sun shadow test), and the sky quadrature's error against a 4× finer step.
 //
-// Usage: bench_irradiance [--points N] [--large] [--max-threads 1|2]
+// Usage: bench_irradiance [--points N] [--quick] [--large] [--max-threads 1|2]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -82,12 +82,14 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
 int main(int argc, char** argv) {
   CLI::App app{"bench_irradiance: SVF vs irradiance throughput on the procedural cities"};
   std::size_t points = 2000;
-  bool large = false;
+  bool large = false, quick = false;
   int max_threads = 2;
   app.add_option("--points", points, "query points per city (half street, half facade)")->check(CLI::Range(4, 100000000));
   app.add_flag("--large", large, "also the ~1M-triangle city");
+  app.add_flag("--quick", quick, "at most 500 points");
   app.add_option("--max-threads", max_threads, "1: single-thread rows only")->check(CLI::Range(1, 2));
   CLI11_PARSE(app, argc, argv);
+  if (quick) points = std::min<std::size_t>(points, 500);
   run_city("city 10k", 10000, points, max_threads);
   if (large) run_city("city 1M", 1000000, points, max_threads);
   return 0;
