@@ -16,20 +16,8 @@ using skyband::test::run_skyband;
 
 namespace {
 
-// A closed 10 m cube [0,10]³ as OBJ quads (our own geometry).
-void write_cube(const fs::path& file) {
-  std::ofstream f(file);
-  for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
-  f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-}
-
-// Single-quoted for the shell (built with += : GCC 12 warns falsely on "'" + s + "'" here).
-std::string q(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += '\'';
-  return s;
-}
+std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+void write_cube(const fs::path& file) { skyband::test::write_cube_obj(file); }
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> cells;

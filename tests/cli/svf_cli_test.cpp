@@ -13,22 +13,9 @@ using skyband::test::run_skyband;
 
 namespace {
 
-// A closed 10 m cube [0,10]³ as OBJ quads (our own geometry).
-void write_cube(const fs::path& file) {
-  std::ofstream f(file);
-  f << "# cube\n";
-  for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
-  f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+void write_cube(const fs::path& file) { skyband::test::write_cube_obj(file); }
+using skyband::test::slurp;
 
 }  // namespace
 

@@ -17,6 +17,27 @@ std::filesystem::path test_folder(const std::string& name) {
   return d;
 }
 
+std::string shell_quote(const std::filesystem::path& p) {
+  std::string s = "'";  // built with += : GCC 12 warns falsely on "'" + s + "'" (-Wrestrict)
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void write_cube_obj(const std::filesystem::path& file) {
+  std::ofstream f(file);
+  f << "# cube\n";
+  for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
+  f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+}
+
 CliResult run_skyband(const std::string& args) {
   const char* exe = std::getenv("SKYBAND_EXE");
   if (!exe) throw std::runtime_error("SKYBAND_EXE is not set (run the test through ctest)");
