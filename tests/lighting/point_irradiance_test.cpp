@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(sun_below_the_horizon_gives_no_direct_term) {
   BOOST_TEST(r[0].sky_W_m2 >= 0.0);
 }
 
-// Results do not depend on the thread count (each point computed alone; 600 points = 3 chunks).
+// Results do not depend on the thread count (each point computed alone; 600 points = several chunks).
 BOOST_AUTO_TEST_CASE(results_do_not_depend_on_threads) {
   TriangleSoup soup = cube();
   append_box(soup, Vec3(20, -5, 0), Vec3(26, 15, 18));
