@@ -109,29 +109,30 @@ struct LobeConstants {
 LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v);
 
 // k(ω) of SpecularLobe::factor_fast for a unit direction L = ω from its cosines N·L and V·L
-// alone (unit N, V; N·V > 0 in `k`): with H = (L + V)/|L + V| and |L + V|² = 2 + 2 V·L,
-//     N·H = (N·L + N·V)/|L + V|,   V·H = (1 + V·L)/|L + V|,
-//     D_n = e^{−x}/(π m² cos⁴θ_h),  x = tan²θ_h/m² = (1 − cos²θ_h)/(cos²θ_h·m²)   (Beckmann),
-//     G/(N·L) = min{1, 2(N·H)·min(N·V, N·L)/(V·H)}/(N·L)                          (Cook–Torrance),
-// the same formulas as cook_torrance_lobe_with with one square root and one division (the
-// reciprocal of cos²θ_h·(V·H)·(N·L) serves all three quotients). 0 where the BRDF is 0 (L or
-// V at or below the surface, L = −V, N·H ≤ 0); *exponent = x where N·H > 0 (else untouched);
-// *v_dot_h = V·H. (specular_sky_test checks it against cook_torrance_lobe.)
+// alone (unit N, V; N·V > 0 in `k`). With a = 1 + V·L = |L + V|²/2 and b = N·L + N·V
+// (= |L + V|·N·H), H = (L + V)/|L + V|:
+//     1/cos²θ_h = |L + V|²/b² = 2a/b²,   V·H = a/|L + V| = √(a/2),
+//     D_n = e^{−x}/(π m² cos⁴θ_h),  x = tan²θ_h/m² = (1/cos²θ_h − 1)/m²             (Beckmann),
+//     G/(N·L) = min{V·H, 2(N·H)·min(N·V, N·L)}/((V·H)(N·L))
+//             = min{a, 2b·min(N·V, N·L)}/(a·N·L)        (|L + V| cancels)     (Cook–Torrance),
+// the same formulas as cook_torrance_lobe_with with one division (r = 1/(b²·a·N·L) serves both
+// quotients: 1/b² = r·a·N·L, 1/(a·N·L) = r·b²) and one square root (V·H, for the Fresnel
+// factor). 0 where the BRDF is 0 (L or V at or below the surface, L = −V, N·H ≤ 0);
+// *exponent = x where N·H > 0 (else untouched); *v_dot_h = V·H. (specular_sky_test checks it
+// against cook_torrance_lobe.)
 inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l, double& v_dot_h,
                           double* exponent = nullptr) {
   if (!(n_dot_l > 0.0)) return 0.0;
-  const double s2 = 2.0 + 2.0 * v_dot_l;  // |L + V|²
-  if (!(s2 > 0.0)) return 0.0;
-  const double inv_len = 1.0 / std::sqrt(s2);
-  const double n_dot_h = (n_dot_l + k.n_dot_v) * inv_len;
-  v_dot_h = (1.0 + v_dot_l) * inv_len;
-  if (!(n_dot_h > 0.0) || !(v_dot_h > 0.0)) return 0.0;
-  const double c2 = n_dot_h * n_dot_h;
-  const double r = 1.0 / (c2 * v_dot_h * n_dot_l);
-  const double inv_c2 = r * v_dot_h * n_dot_l, inv_vh_nl = r * c2;
-  const double x = (1.0 - c2) * inv_c2 * k.inv_m2;
+  const double a = 1.0 + v_dot_l;
+  const double b = n_dot_l + k.n_dot_v;
+  if (!(a > 0.0) || !(b > 0.0)) return 0.0;
+  v_dot_h = std::sqrt(0.5 * a);
+  const double b2 = b * b;
+  const double r = 1.0 / (b2 * a * n_dot_l);
+  const double inv_c2 = 2.0 * a * (r * a * n_dot_l);
+  const double x = std::max(inv_c2 - 1.0, 0.0) * k.inv_m2;  // ≥ 0 (rounding near the peak)
   if (exponent) *exponent = x;
-  const double g_over_nl = std::min(v_dot_h, 2.0 * n_dot_h * std::min(k.n_dot_v, n_dot_l)) * inv_vh_nl;
+  const double g_over_nl = std::min(a, 2.0 * b * std::min(k.n_dot_v, n_dot_l)) * (r * b2);
   return k.scale * exp_neg(x) * inv_c2 * inv_c2 * g_over_nl;
 }
 
