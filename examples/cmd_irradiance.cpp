@@ -14,6 +14,8 @@
 //   sun_visible           1 if the sun is above the horizon, in front of the face and not hidden
 //   sky_W_m2, sun_W_m2, global_W_m2   irradiance, W·m⁻², integrated over 380–780 nm
 //   sky_lx, sun_lx, global_lx         illuminance, lux
+//   sky_ratio             sky_lx / that of an unobstructed horizontal face under the same sky
+//                         (with --model cie-overcast: the vertical sky component of a window)
 // written atomically. Not included: light reflected by the ground and the buildings.
 #include <chrono>
 #include <cstdio>
@@ -53,13 +55,15 @@ void run(const IrradianceArgs& a) {
       compute_point_irradiance(scene, table.points, sky, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const std::vector<std::string> columns = {"svf",      "sky_exposure", "cos_incidence", "sun_visible", "sky_W_m2",
-                                            "sun_W_m2", "global_W_m2",  "sky_lx",        "sun_lx",      "global_lx"};
+  const std::vector<std::string> columns = {"svf",      "sky_exposure", "cos_incidence", "sun_visible",
+                                            "sky_W_m2", "sun_W_m2",     "global_W_m2",   "sky_lx",
+                                            "sun_lx",   "global_lx",    "sky_ratio"};
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
     const double v[] = {r[i].svf,      r[i].sky_exposure,           r[i].cos_incidence, r[i].sun_visible ? 1.0 : 0.0,
                         r[i].sky_W_m2, r[i].sun_W_m2,               r[i].sky_W_m2 + r[i].sun_W_m2,
-                        r[i].sky_lx,   r[i].sun_lx,                 r[i].sky_lx + r[i].sun_lx};
+                        r[i].sky_lx,   r[i].sun_lx,                 r[i].sky_lx + r[i].sun_lx,
+                        r[i].sky_ratio};
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
@@ -82,7 +86,8 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
       "Sky and sun irradiance (W/m2, 380-780 nm) and illuminance (lux) on calculation points: the sky through the\n"
       "exact visible sky of each point, the sun with an exact shadow test. Points and accuracy options as for svf.\n"
       "Coordinates: metres, z up (x east, y north); azimuth clockwise from north. Output columns: svf, sky_exposure,\n"
-      "cos_incidence, sun_visible, sky_W_m2, sun_W_m2, global_W_m2, sky_lx, sun_lx, global_lx.\n"
+      "cos_incidence, sun_visible, sky_W_m2, sun_W_m2, global_W_m2, sky_lx, sun_lx, global_lx, sky_ratio (sky_lx over\n"
+      "that of an open horizontal face; with --model cie-overcast the vertical sky component of a window).\n"
       "Not included: light reflected by the ground and the buildings.");
   args->job.add_to(cmd, "Output CSV (input rows + the columns above), written atomically");
   args->sun_sky.add_to(cmd);

@@ -37,6 +37,16 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
   const double sun_W_m2 = dn.integral_nm(), sun_lx = luminous(dn);
   const Vec3 s = sky.sun_direction();
 
+  // The denominator of sky_ratio: an unobstructed horizontal point, same bands and quadrature.
+  double open_sky[2];
+  {
+    const Scene empty{TriangleSoup{}};
+    const QueryPoint up{Vec3(0, 0, 0), Vec3(0, 0, 1)};
+    const VisibilityCache open = compute_visibility(empty, std::span<const QueryPoint>(&up, 1), options.visibility, 1);
+    integrate_irradiance_channels<2>(open.view(0), [&](const Vec3& d, double* c) { grid.lookup_unit_n<2>(d, c); },
+                                     open_sky, options.max_step_rad);
+  }
+
   std::vector<PointIrradiance> out(points.size());
   for_each_visibility_chunk(
       scene, points, options.visibility, options.threads, progress,
@@ -51,6 +61,7 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
                                            options.max_step_rad);
           r.sky_W_m2 = e[0];
           r.sky_lx = e[1];
+          r.sky_ratio = open_sky[1] > 0 ? e[1] / open_sky[1] : 0.0;
           const QueryPoint& q = points[first + i];
           r.cos_incidence = q.normal.dot(s);
           // direction_visible is false for a sun below the horizon or behind the face.

@@ -36,6 +36,11 @@ struct PointIrradiance {
   double sun_W_m2 = 0;       // direct sun irradiance, W·m⁻² (380–780 nm)
   double sky_lx = 0;         // diffuse sky illuminance, lx
   double sun_lx = 0;         // direct sun illuminance, lx
+  // sky_lx over the sky illuminance of an unobstructed horizontal face under the same sky
+  // (computed the same way, so an open horizontal point gives exactly 1). Under the CIE standard
+  // overcast sky this is the vertical sky component of a vertical face (BRE 209, BS 8206-2:
+  // 39.6 % unobstructed) and the sky factor of a horizontal one.
+  double sky_ratio = 0;
 };
 
 struct PointIrradianceOptions {

@@ -72,7 +72,7 @@ BOOST_AUTO_TEST_CASE(end_to_end_against_the_sky_command) {
   std::getline(f, header);
   BOOST_TEST(header ==
              "id,x,y,z,nx,ny,nz,svf,sky_exposure,cos_incidence,sun_visible,sky_W_m2,sun_W_m2,global_W_m2,sky_lx,sun_lx,"
-             "global_lx");
+             "global_lx,sky_ratio");
   const auto rows = read_csv(d / "out.csv");
   BOOST_TEST_REQUIRE(rows.size() == 3u);
 
@@ -88,6 +88,7 @@ BOOST_AUTO_TEST_CASE(end_to_end_against_the_sky_command) {
   BOOST_TEST(num(top, "svf") == 1.0, tt::tolerance(1e-12));
   BOOST_TEST(num(top, "sky_W_m2") == diffuse, tt::tolerance(3e-3));
   BOOST_TEST(num(top, "sky_lx") == diffuse_lx, tt::tolerance(3e-3));
+  BOOST_TEST(num(top, "sky_ratio") == 1.0, tt::tolerance(1e-12));
   BOOST_TEST(num(top, "sun_visible") == 1.0);
   BOOST_TEST(num(top, "sun_W_m2") == dn * sin30, tt::tolerance(1e-9));
   BOOST_TEST(num(top, "global_W_m2") == num(top, "sky_W_m2") + num(top, "sun_W_m2"), tt::tolerance(1e-12));

@@ -52,6 +52,14 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
   BOOST_TEST(r[1].sky_W_m2 == ev * lz.integral_nm(), tt::tolerance(1e-3));
   BOOST_TEST(r[1].sky_lx == ev * luminous(lz), tt::tolerance(1e-3));
   BOOST_TEST(r[2].sky_W_m2 == eh * lz.integral_nm(), tt::tolerance(1e-3));
+  // sky_ratio: exactly 1 on the open horizontal faces (same bands, same quadrature); on the open
+  // wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
+  // unobstructed window that BRE 209 (Littlefair, Site layout planning for daylight and
+  // sunlight, 2nd ed. 2011, §2.2) publishes.
+  BOOST_TEST(r[0].sky_ratio == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(r[2].sky_ratio == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(r[1].sky_ratio == ev / eh, tt::tolerance(1e-3));
+  BOOST_TEST(std::abs(100 * r[1].sky_ratio - 39.6) < 0.05);
   // The overcast sky hides the sun (cie_sky.h): no direct term anywhere.
   for (const auto& x : r) {
     BOOST_TEST(!x.sun_visible);
