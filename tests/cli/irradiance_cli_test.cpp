@@ -160,3 +160,18 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
     BOOST_TEST(!fs::exists(d / "out.csv"));
   }
 }
+
+// The built-in demo prints its table; the open roof of the tower has sky_ratio 1 (it is an
+// unobstructed horizontal face) and the street centre is in a building's shadow at this sun.
+BOOST_AUTO_TEST_CASE(demo_runs) {
+  const auto r = run_skyband("irradiance --demo --sun-altitude 35 --sun-azimuth 200");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const auto tower = r.out.find("roof of the tower");
+  BOOST_TEST_REQUIRE(tower != std::string::npos);
+  const std::string line = r.out.substr(tower, r.out.find('\n', tower) - tower);
+  BOOST_TEST(line.find(" yes ") != std::string::npos);
+  BOOST_TEST(line.substr(line.size() - 6) == "1.0000");
+  const auto demo_without_sun = run_skyband("irradiance --demo");
+  BOOST_TEST(demo_without_sun.exit_code == 2);
+  BOOST_TEST(demo_without_sun.err.find("no sun") != std::string::npos);
+}
