@@ -49,7 +49,7 @@ template <int R>
 __attribute__((target("avx2,fma"), flatten)) Xyz ColourSpecularSky::integrate_avx2(
     const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, const SpecularSkyOptions& opt,
     SpecularSkyStats& stats) const {
-  Policy<R> p{this};
+  Policy<R, true> p{this};
   return to_xyz(specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats));
 }
 #else

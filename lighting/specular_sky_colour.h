@@ -57,10 +57,12 @@ class ColourSpecularSky {
   Xyz radiance_xyz_portable(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
                             const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats = nullptr) const;
 
-  // The reflection policy of specular_sky.h for Fresnel rank R (public for the march template).
-  template <int R>
+  // The reflection policy of specular_sky.h for Fresnel rank R (public for the march template);
+  // Avx2: the instantiation of the AVX2 + FMA build (specular_sky.h, lobe_factor3_avx2).
+  template <int R, bool Avx2 = false>
   struct Policy {
     using Value = ColourChannels<3 * R>;
+    static constexpr bool kAvx2 = Avx2;
     const ColourSpecularSky* self;
     // w: unit (the march's directions are).
     void weighted(const Vec3& w, double cos_theta, double k, Value& out) const {
