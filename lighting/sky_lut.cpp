@@ -21,6 +21,7 @@ SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, 
     : lines_(line_deltas_rad.size()), cells_(alpha_cells), deltas_(line_deltas_rad.begin(), line_deltas_rad.end()) {
   if (alpha_cells < 1) throw InputError("sky look-up table: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
   step_rad_ = kPi / cells_;
+  inv_step_ = cells_ / kPi;
   table_.assign(lines_ * static_cast<std::size_t>(cells_ + 1) * kSpectrumSamples, 0.0);
   Spectrum radiance;
   for (std::size_t l = 0; l < lines_; ++l) {
@@ -70,6 +71,7 @@ SkyLut SkyLut::project(std::span<const Spectrum> weights) const {
   p.cells_ = cells_;
   p.channels_ = static_cast<int>(weights.size());
   p.step_rad_ = step_rad_;
+  p.inv_step_ = inv_step_;
   p.deltas_ = deltas_;
   const std::size_t nodes = lines_ * static_cast<std::size_t>(cells_ + 1);
   p.table_.assign(nodes * weights.size(), 0.0);

@@ -84,7 +84,7 @@ class SkyLut {
                    static_cast<std::size_t>(channels_)];
   }
   void locate(double alpha_rad, int& node, double& t) const {
-    const double x = std::clamp(alpha_rad, 0.0, kPi) / step_rad_;
+    const double x = std::clamp(alpha_rad, 0.0, kPi) * inv_step_;  // a product: ~10⁸ per image
     node = std::min(static_cast<int>(x), cells_ - 1);
     t = std::min(x - node, 1.0);
   }
@@ -97,6 +97,7 @@ class SkyLut {
   int cells_ = 0;
   int channels_ = kSpectrumSamples;
   double step_rad_ = 0;
+  double inv_step_ = 0;  // 1/step_rad_ (cells per radian)
   std::vector<double> deltas_;
   std::vector<double> table_;  // [line][node 0..cells][channel]
   std::vector<double> whole_;  // [line][channel]
