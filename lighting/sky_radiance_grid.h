@@ -102,6 +102,12 @@ class ProjectedSkyGrid {
   void lookup_n(const Vec3& dir, double* out) const {
     sky_grid_interpolate(data_.data(), N, dir, out);
   }
+  // out[k], k < N == channels(): the bilinear interpolation in cell (ix, iy) at fractions (fx, fy)
+  // (from sky_grid_cell_unit or the same arithmetic done elsewhere).
+  template <int N>
+  void lookup_cell_n(int ix, int iy, double fx, double fy, double* out) const {
+    sky_grid_bilinear(data_.data(), N, ix, iy, fx, fy, out);
+  }
   // The same for a unit `dir` (sky_grid_cell_unit): the specular march's look-up.
   template <int N>
   void lookup_unit_n(const Vec3& dir, double* out) const {

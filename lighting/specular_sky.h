@@ -350,6 +350,22 @@ void integrate_nodes3(const PointContext& c, const Line& line, const double (&co
     }
     lobe_factor3_avx2(c.lobe_k, n_dot_w, v_dot_w, sin_a, k, v_dot_h, x);
     for (int n = 0; n < 3; ++n) l[n].x = x[n];
+    if constexpr (requires(typename Policy::Value (&o)[3], double (&g)[3]) {
+                    p.eval3(cos_a, sin_a, line.u, line.u, v_dot_h, k, o, g);
+                  }) {
+      typename Policy::Value out[3];
+      double g[3];
+      p.eval3(cos_a, sin_a, c.view->frame().x, line.u, v_dot_h, k, out, g);
+      for (int n = 0; n < 3; ++n) {
+        if (k[n] > 0.0) {
+          ++stats.radiance_evals;
+          l[n].g = g[n];
+          if (l[n].g > 0.0) cell += out[n] * (half * kGl3W[n]);
+        }
+        raise(level, l[n]);
+      }
+      return;
+    }
   } else
 #endif
   {

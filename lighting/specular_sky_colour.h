@@ -73,9 +73,59 @@ class ColourSpecularSky {
       for (int c = 0; c < 3; ++c)
         for (int j = 0; j < R; ++j) out.v[c * R + j] = k * u[j] * l[c * R + j];
     }
+#if SKYBAND_LOBE_AVX2
+    // eval for the three Gauss–Legendre nodes of a piece at once (the AVX2 build only):
+    // w_n = cos_a[n]·x + sin_a[n]·u (unit), its grid cell as sky_grid_cell_unit computes it, in
+    // AVX2 lanes; then per node with k[n] > 0 the bilinear look-up and the Fresnel factors as in
+    // eval (out[n], g[n] set only for those nodes).
+    __attribute__((target("avx2,fma"))) void eval3(const double (&cos_a)[3], const double (&sin_a)[3], const Vec3& x,
+                                                   const Vec3& u, const double (&v_dot_h)[3], const double (&k)[3],
+                                                   Value (&out)[3], double (&g)[3]) const {
+      const __m256d c = _mm256_setr_pd(cos_a[0], cos_a[1], cos_a[2], cos_a[2]);
+      const __m256d s = _mm256_setr_pd(sin_a[0], sin_a[1], sin_a[2], sin_a[2]);
+      const __m256d wx = _mm256_add_pd(_mm256_mul_pd(c, _mm256_set1_pd(x.x())), _mm256_mul_pd(s, _mm256_set1_pd(u.x())));
+      const __m256d wy = _mm256_add_pd(_mm256_mul_pd(c, _mm256_set1_pd(x.y())), _mm256_mul_pd(s, _mm256_set1_pd(u.y())));
+      const __m256d wz = _mm256_add_pd(_mm256_mul_pd(c, _mm256_set1_pd(x.z())), _mm256_mul_pd(s, _mm256_set1_pd(u.z())));
+      const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+      const __m256d above = _mm256_cmp_pd(wz, zero, _CMP_GT_OQ);  // ω_z > 0 (false for NaN)
+      const __m256d half = _mm256_set1_pd(0.5 * kSkyGridCells);
+      const __m256d kk = _mm256_div_pd(half, _mm256_add_pd(one, _mm256_blendv_pd(zero, wz, above)));
+      const __m256d uu = _mm256_max_pd(_mm256_add_pd(_mm256_mul_pd(wx, kk), half), zero);
+      const __m256d vv = _mm256_max_pd(_mm256_add_pd(_mm256_mul_pd(wy, kk), half), zero);
+      const __m128i last = _mm_set1_epi32(kSkyGridCells - 1);
+      const __m128i ix = _mm_min_epi32(_mm256_cvttpd_epi32(uu), last), iy = _mm_min_epi32(_mm256_cvttpd_epi32(vv), last);
+      const __m256d fx = _mm256_sub_pd(uu, _mm256_cvtepi32_pd(ix)), fy = _mm256_sub_pd(vv, _mm256_cvtepi32_pd(iy));
+      alignas(32) double fxs[4], fys[4];
+      alignas(16) int ixs[4], iys[4];
+      _mm256_store_pd(fxs, fx);
+      _mm256_store_pd(fys, fy);
+      _mm_store_si128(reinterpret_cast<__m128i*>(ixs), ix);
+      _mm_store_si128(reinterpret_cast<__m128i*>(iys), iy);
+      const int up = _mm256_movemask_pd(above);
+      for (int n = 0; n < 3; ++n) {
+        if (!(k[n] > 0.0)) continue;
+        double l[3 * R];
+        if (up >> n & 1) {
+          self->grid_.template lookup_cell_n<3 * R>(ixs[n], iys[n], fxs[n], fys[n], l);
+        } else {
+          for (int i = 0; i < 3 * R; ++i) l[i] = 0.0;
+        }
+        g[n] = combine(l, v_dot_h[n], k[n], out[n]);
+      }
+    }
+#endif
     double eval(const Vec3& w, double v_dot_h, double k, Value& out) const {
-      weighted(w, v_dot_h, k, out);
-      double y = 0;  // the luminance channel: Σ_j of component Y
+      double l[3 * R];
+      self->grid_.template lookup_unit_n<3 * R>(w, l);
+      return combine(l, v_dot_h, k, out);
+    }
+    // out = k·U(cos θ)·l channel by channel; returns the luminance channel Σ_j of component Y, ≥ 0.
+    double combine(const double* l, double cos_theta, double k, Value& out) const {
+      double u[FresnelFactors::kMaxRank] = {1.0, 1.0, 1.0, 1.0};
+      if (self->factors_) self->factors_->u(cos_theta, u);
+      for (int c = 0; c < 3; ++c)
+        for (int j = 0; j < R; ++j) out.v[c * R + j] = k * u[j] * l[c * R + j];
+      double y = 0;
       for (int j = 0; j < R; ++j) y += out.v[R + j];
       return std::max(y, 0.0);
     }
