@@ -64,15 +64,6 @@ class ColourSpecularSky {
     using Value = ColourChannels<3 * R>;
     static constexpr bool kAvx2 = Avx2;
     const ColourSpecularSky* self;
-    // w: unit (the march's directions are).
-    void weighted(const Vec3& w, double cos_theta, double k, Value& out) const {
-      double l[3 * R];
-      self->grid_.template lookup_unit_n<3 * R>(w, l);
-      double u[FresnelFactors::kMaxRank] = {1.0, 1.0, 1.0, 1.0};
-      if (self->factors_) self->factors_->u(cos_theta, u);
-      for (int c = 0; c < 3; ++c)
-        for (int j = 0; j < R; ++j) out.v[c * R + j] = k * u[j] * l[c * R + j];
-    }
 #if SKYBAND_LOBE_AVX2
     // eval for the three Gauss–Legendre nodes of a piece at once (the AVX2 build only):
     // w_n = cos_a[n]·x + sin_a[n]·u (unit), its grid cell as sky_grid_cell_unit computes it, in
@@ -114,6 +105,7 @@ class ColourSpecularSky {
       }
     }
 #endif
+    // w: unit (the march's directions are).
     double eval(const Vec3& w, double v_dot_h, double k, Value& out) const {
       double l[3 * R];
       self->grid_.template lookup_unit_n<3 * R>(w, l);
@@ -129,7 +121,7 @@ class ColourSpecularSky {
       for (int j = 0; j < R; ++j) y += out.v[R + j];
       return std::max(y, 0.0);
     }
-    void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const { weighted(q, n_dot_v, weight, out); }
+    void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const { eval(q, n_dot_v, weight, out); }
     double measure(const Value& x) const {
       double y = 0;
       for (int j = 0; j < R; ++j) y += x.v[R + j];
