@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <mutex>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -896,16 +897,21 @@ std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle
 std::size_t BandVisibility::last_plane_count() const { return impl_->plane_count; }
 
 namespace {
-// Points per chunk: large enough to amortise the hand-over (a few µs against ~1 ms per point),
-// small enough that the last chunk leaves the other core idle only briefly (256 left up to a
-// fifth of a 2,000-point run on one core).
-constexpr std::size_t kChunk = 64;
+// Points per chunk: at most 256 (the hand-over is a few µs against ~1 ms per point, and a large
+// run keeps few, large parts), and at least 16 chunks per worker, so that the last chunk of a
+// small run (2,000 points: 62 per chunk, not 256) leaves the other core idle only briefly.
+std::size_t chunk_size(std::size_t points, int workers) {
+  const std::size_t per = points / (16 * static_cast<std::size_t>(std::max(workers, 1)));
+  return std::clamp<std::size_t>(per, 16, 256);
+}
 }  // namespace
 
 void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
                                int threads, const std::function<void(std::size_t, std::size_t)>& progress,
                                const VisibilityChunkConsumer& consume) {
-  const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
+  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  const std::size_t chunk = chunk_size(points.size(), n);
+  const std::size_t chunks = (points.size() + chunk - 1) / chunk;
   tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
@@ -914,7 +920,7 @@ void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> p
     if (!worker) worker = std::make_unique<BandVisibility>(scene, options);
     VisibilityCache::PointResult result;
     for (std::size_t c = range.begin(); c != range.end(); ++c) {
-      const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
+      const std::size_t first = c * chunk, last = std::min(points.size(), first + chunk);
       VisibilityCache part;
       part.reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
       for (std::size_t i = first; i < last; ++i) {
@@ -929,7 +935,6 @@ void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> p
       }
     }
   };
-  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(n);
   arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), body); });
   if (progress) progress(points.size(), points.size());
@@ -938,14 +943,22 @@ void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> p
 VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
                                    const VisibilityOptions& options, int threads,
                                    const std::function<void(std::size_t, std::size_t)>& progress) {
-  std::vector<VisibilityCache> parts((points.size() + kChunk - 1) / kChunk);
+  // Parts keyed by their first point (chunks arrive in any order), then concatenated in order.
+  std::map<std::size_t, VisibilityCache> parts;
+  std::mutex parts_mutex;
   for_each_visibility_chunk(scene, points, options, threads, progress,
-                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) { parts[first / kChunk] = std::move(part); });
+                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) {
+                              std::lock_guard lock(parts_mutex);
+                              parts.emplace(first, std::move(part));
+                            });
   VisibilityCache cache;
   std::size_t bands = 0;
-  for (const auto& part : parts) bands += part.bands().size();
+  for (const auto& [first, part] : parts) bands += part.bands().size();
   cache.reserve(points.size(), points.empty() ? 0 : bands / points.size() + 1);
-  for (const auto& part : parts) cache.append(part);
+  for (auto& [first, part] : parts) {
+    cache.append(part);
+    part = VisibilityCache{};  // release each part once copied: peak ≈ cache + one part, not 2 × cache
+  }
   return cache;
 }
 
