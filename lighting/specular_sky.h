@@ -181,7 +181,10 @@ __attribute__((target("avx2,fma"))) inline void lobe_factor3_avx2(const LobeCons
   poly = _mm256_sub_pd(_mm256_set1_pd(0.5), _mm256_mul_pd(f, poly));
   poly = _mm256_sub_pd(one, _mm256_mul_pd(f, poly));
   poly = _mm256_sub_pd(one, _mm256_mul_pd(f, poly));
-  const __m256d e = _mm256_mul_pd(_mm256_i32gather_pd(table().data(), j, 8), poly);
+  // The masked gather with an explicit zero source and an all-ones mask is the plain gather;
+  // GCC 12's _mm256_i32gather_pd leaves its source uninitialised and warns (-Wmaybe-uninitialized).
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d e = _mm256_mul_pd(_mm256_mask_i32gather_pd(zero, table().data(), j, all, 8), poly);
   const __m256d s = _mm256_setr_pd(sin_a[0], sin_a[1], sin_a[2], sin_a[2]);
   __m256d kv = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(lk.scale), e), _mm256_mul_pd(inv_c2, inv_c2)), gnl);
   kv = _mm256_mul_pd(_mm256_mul_pd(kv, s), s);
