@@ -90,7 +90,6 @@ int main(int argc, char** argv) {
   GeometryPass pass = trace_geometry(scene, camera, rs);
   bool first = true;
   for (const Sun& s : suns) {
-    const auto tv = std::chrono::steady_clock::now();
     const Vec3 dir = direction_from_altitude_azimuth(s.alt * kPi / 180, s.az * kPi / 180);
     update_sun(pass, scene, dir, rs);
     const auto tk = std::chrono::steady_clock::now();
