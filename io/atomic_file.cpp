@@ -15,8 +15,11 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
   if (!fs::is_directory(dir, ec))
     throw InputError("cannot write '" + path.string() + "': folder '" + dir.string() + "' does not exist");
   static std::atomic<unsigned> counter{0};
-  const fs::path temp = dir / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                               std::to_string(counter++));
+  // Built with += : GCC 12 warns falsely (-Wrestrict) on "." + std::string&& here.
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  const fs::path temp = dir / name;
   try {
     write(temp);
   } catch (...) {
