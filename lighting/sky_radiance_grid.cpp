@@ -96,6 +96,18 @@ ProjectedSkyGrid SkyRadianceGrid::project(std::span<const Spectrum> weights) con
   return g;
 }
 
+void ProjectedSkyGrid::add_scaled(const ProjectedSkyGrid& other, double k) {
+  if (channels_ == 0) {
+    channels_ = other.channels_;
+    data_.assign(other.data_.size(), 0.0f);
+  }
+  if (other.channels_ != channels_ || other.data_.size() != data_.size())
+    throw std::invalid_argument("ProjectedSkyGrid::add_scaled: " + std::to_string(other.channels_) + " channels added to " +
+                                std::to_string(channels_));
+  for (std::size_t i = 0; i < data_.size(); ++i)
+    data_[i] = static_cast<float>(static_cast<double>(data_[i]) + k * static_cast<double>(other.data_[i]));
+}
+
 void ProjectedSkyGrid::lookup(const Vec3& dir, double* out) const {
   sky_grid_interpolate(data_.data(), static_cast<std::size_t>(channels_), dir, out);
 }

@@ -97,6 +97,11 @@ class ProjectedSkyGrid {
   int channels() const { return channels_; }
   // out[k] = c_k(dir), k < channels().
   void lookup(const Vec3& dir, double* out) const;
+  // this += k·other, node by node (same channel count, else std::invalid_argument): by the
+  // linearity of the interpolation, the look-ups of the sum are the sums of the look-ups. A
+  // time-integrated sky (Σ_t hours_t·L_t) for cumulative irradiation is built this way. An empty
+  // grid (default-constructed) takes other's shape.
+  void add_scaled(const ProjectedSkyGrid& other, double k);
   // The same for a compile-time channel count N == channels() (the renderer's hot loop).
   template <int N>
   void lookup_n(const Vec3& dir, double* out) const {

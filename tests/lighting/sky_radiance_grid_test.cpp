@@ -81,3 +81,29 @@ BOOST_AUTO_TEST_CASE(projection_commutes_with_lookup) {
   BOOST_CHECK_THROW(grid.project(std::vector<Spectrum>{}), std::invalid_argument);
   BOOST_CHECK_THROW(grid.project(std::vector<Spectrum>(13)), std::invalid_argument);
 }
+
+// add_scaled: by the linearity of bilinear interpolation, a look-up in a + k·b equals the look-up
+// in a plus k times the look-up in b (up to the float storage of the sum, ~1e-7 relative).
+BOOST_AUTO_TEST_CASE(add_scaled_sums_lookups) {
+  const Vec3 sun1 = dir(35, 140), sun2 = dir(10, 250);
+  const std::vector<Spectrum> w = {xyz_weights(1), Spectrum::constant(1.0)};
+  const ProjectedSkyGrid a =
+      SkyRadianceGrid([&](const Vec3& d, Spectrum& out) { test::clear_sky_radiance(sun1, d, out); }, 0).project(w);
+  const ProjectedSkyGrid b =
+      SkyRadianceGrid([&](const Vec3& d, Spectrum& out) { test::clear_sky_radiance(sun2, d, out); }, 0).project(w);
+  ProjectedSkyGrid sum;  // empty: takes a's shape
+  sum.add_scaled(a, 1.0);
+  sum.add_scaled(b, 0.25);
+  BOOST_TEST(sum.channels() == 2);
+  double ra[2], rb[2], rs[2];
+  for (const Vec3& d : {dir(35, 140), dir(5, 10), dir(70, 300), dir(12, 251)}) {
+    a.lookup(d, ra);
+    b.lookup(d, rb);
+    sum.lookup(d, rs);
+    for (int k = 0; k < 2; ++k) BOOST_TEST(rs[k] == ra[k] + 0.25 * rb[k], tt::tolerance(1e-6));
+  }
+  const ProjectedSkyGrid three =
+      SkyRadianceGrid([&](const Vec3& d, Spectrum& out) { test::clear_sky_radiance(sun1, d, out); }, 0)
+          .project(std::vector<Spectrum>{xyz_weights(0), xyz_weights(1), xyz_weights(2)});
+  BOOST_CHECK_THROW(sum.add_scaled(three, 1.0), std::invalid_argument);
+}
