@@ -5,6 +5,7 @@
 //                      [--model multiple|single|cie-N|cie-overcast] [--aod550 ...] [--bands N | --tolerance T]
 //                      [--threads K] [--quiet]
 //   skyband irradiance --demo --sun-altitude DEG [--sun-azimuth DEG]
+//   skyband irradiance --mesh ... --points ... --out ... --times TIMES.csv [--lat DEG --lon DEG] [sky options]
 //
 // Points as for `skyband svf` (metres, z up; normals default to +z). Per point, on the plane of
 // its normal (lighting/point_irradiance.h): the sky through the exact visible α-intervals of the
@@ -17,7 +18,11 @@
 //   sky_lx, sun_lx, global_lx         illuminance, lux
 //   sky_ratio             sky_lx / that of an unobstructed horizontal face under the same sky
 //                         (with --model cie-overcast: the vertical sky component of a window)
-// written atomically. Not included: light reflected by the ground and the buildings.
+// written atomically. With --times, sums over the file's moments (each weighted by its `hours`):
+//   svf, sky_exposure, sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2 (W·h·m⁻², 380–780 nm),
+//   sky_lxh, sun_lxh, global_lxh (lx·h): one geometry pass, one quadrature of the time-summed sky
+//   per point, one exact shadow test per moment and point.
+// Not included: light reflected by the ground and the buildings.
 #include <chrono>
 #include <cstdio>
 #include <numeric>
@@ -26,6 +31,8 @@
 #include "examples/demo_scene.h"
 #include "examples/point_job_args.h"
 #include "examples/sun_sky_options.h"
+#include "geometry/input_error.h"
+#include "io/csv_table.h"
 #include "io/points_csv.h"
 #include "lighting/colour.h"
 #include "lighting/point_irradiance.h"
@@ -37,8 +44,79 @@ namespace {
 struct IrradianceArgs {
   PointJobArgs job;
   SunSkyOptions sun_sky;
+  std::string times;
   bool demo = false;
 };
+
+// The moments of a times file: a header with either `time` (ISO 8601 local time; needs --lat and
+// --lon) or `sun_altitude` and `sun_azimuth` (degrees), and optionally `hours` (the duration each
+// row stands for, ≥ 0; default 1). Errors name the file, line, column and value.
+std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
+  const CsvTable csv = read_csv_table(a.times, "times file");
+  const std::string header_at = a.times + ":" + std::to_string(csv.header_line);
+  const int ct = csv.column("time"), calt = csv.column("sun_altitude"), caz = csv.column("sun_azimuth"),
+            ch = csv.column("hours");
+  const bool by_time = ct >= 0, by_angle = calt >= 0 || caz >= 0;
+  if (by_time == by_angle)
+    throw InputError(header_at + ": give either a 'time' column or 'sun_altitude' and 'sun_azimuth' columns");
+  if (by_angle && (calt < 0 || caz < 0)) throw InputError(header_at + ": 'sun_altitude' and 'sun_azimuth' come together");
+  std::vector<SunMoment> moments;
+  for (std::size_t r = 0; r < csv.rows.size(); ++r) {
+    SunMoment m;
+    if (by_time) {
+      m.sun_dir = a.sun_sky.sun_at(trim_csv_cell(csv.rows[r][static_cast<std::size_t>(ct)]), csv.where(r)).direction();
+    } else {
+      const double alt = csv.number(r, calt), az = csv.number(r, caz);
+      if (alt < -90 || alt > 90) throw InputError(csv.where(r) + ": sun_altitude " + fmt(alt) + " must be in [-90, 90] degrees");
+      m.sun_dir = SunPlacement{alt, az, {}}.direction();
+    }
+    if (ch >= 0) {
+      m.hours = csv.number(r, ch);
+      if (m.hours < 0) throw InputError(csv.where(r) + ": hours " + fmt(m.hours) + " must be >= 0");
+    }
+    moments.push_back(m);
+  }
+  if (moments.empty()) throw InputError(a.times + ": no moments (the file has a header only)");
+  return moments;
+}
+
+// --times: irradiation summed over the file's moments.
+void run_times(const IrradianceArgs& a) {
+  if (a.sun_sky.moment_given())
+    throw InputError("--times: the suns come from the times file; --sun-altitude, --sun-azimuth and --time do not "
+                     "apply (--tz gives the UTC offset of times written without one)");
+  PointIrradianceOptions opt;
+  opt.visibility = a.job.visibility_options();
+  opt.threads = a.job.threads;
+  const AtmosphereParams atm = a.sun_sky.atmosphere();
+  const SkyModelSpec spec = a.sun_sky.sky_spec();
+  const std::vector<SunMoment> moments = read_moments(a);
+
+  TriangleSoup soup = a.job.load_meshes();
+  const PointsTable table = read_points_csv(a.job.points);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene scene(std::move(soup));
+  Progress progress("irradiance", !a.job.quiet);
+  const std::vector<PointIrradiation> r = compute_point_irradiation(
+      scene, table.points, atm, spec, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const std::vector<std::string> columns = {"svf",        "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",
+                                            "global_Wh_m2", "sky_lxh",    "sun_lxh",   "global_lxh"};
+  std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const double v[] = {r[i].svf,       r[i].sky_exposure, r[i].sun_hours, r[i].sky_Wh_m2, r[i].sun_Wh_m2,
+                        r[i].sky_Wh_m2 + r[i].sun_Wh_m2,   r[i].sky_lxh,   r[i].sun_lxh,   r[i].sky_lxh + r[i].sun_lxh};
+    for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
+  }
+  write_points_csv(a.job.out, table, columns, values);
+  if (!a.job.quiet) {
+    double hours = 0;
+    for (const SunMoment& m : moments) hours += m.hours;
+    std::fprintf(stderr, "irradiance: %zu points x %zu moments (%.2f h) in %.2f s; wrote %s\n", r.size(), moments.size(),
+                 hours, seconds, a.job.out.c_str());
+  }
+}
 
 // The built-in street block of `svf --demo` under the given sun and sky: a table on stdout.
 void run_demo(const IrradianceArgs& a) {
@@ -63,6 +141,10 @@ void run_demo(const IrradianceArgs& a) {
 
 void run(const IrradianceArgs& a) {
   if (a.demo) return run_demo(a);
+  if (!a.times.empty()) {
+    a.job.require_files("irradiance");
+    return run_times(a);
+  }
   // Everything the user typed is validated before any file is read or written.
   a.job.require_files("irradiance", " (or --demo)");
   PointIrradianceOptions opt;
@@ -113,9 +195,14 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
       "Coordinates: metres, z up (x east, y north); azimuth clockwise from north. Output columns: svf, sky_exposure,\n"
       "cos_incidence, sun_visible, sky_W_m2, sun_W_m2, global_W_m2, sky_lx, sun_lx, global_lx, sky_ratio (sky_lx over\n"
       "that of an open horizontal face; with --model cie-overcast the vertical sky component of a window).\n"
+      "With --times FILE: sums over the file's moments instead: sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2, sky_lxh,\n"
+      "sun_lxh, global_lxh (each moment weighted by its 'hours').\n"
       "Not included: light reflected by the ground and the buildings.");
   args->job.add_to(cmd, "Output CSV (input rows + the columns above), written atomically");
   args->sun_sky.add_to(cmd);
+  cmd->add_option("--times", args->times,
+                  "CSV of moments: 'time' (ISO 8601, with --lat --lon) or 'sun_altitude','sun_azimuth' (degrees), "
+                  "optional 'hours' (default 1); outputs sums over them instead of one moment (see --help above)");
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table (needs a sun)");
   cmd->callback([args] { run(*args); });
   return cmd;

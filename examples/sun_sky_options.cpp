@@ -65,6 +65,16 @@ SunPlacement SunSkyOptions::place_sun() const {
   if (!by_place) throw InputError("no sun: give --sun-altitude DEG [--sun-azimuth DEG] or --lat DEG --lon DEG --time ISO8601");
   if (o_lat_->count() == 0 || o_lon_->count() == 0 || o_time_->count() == 0)
     throw InputError("sun from place and time needs all of --lat, --lon and --time");
+  return sun_at(time_, "--time");
+}
+
+bool SunSkyOptions::moment_given() const {
+  return o_alt_->count() > 0 || o_az_->count() > 0 || o_time_->count() > 0;
+}
+
+SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& where) const {
+  if (o_lat_->count() == 0 || o_lon_->count() == 0)
+    throw InputError(where + ": a sun from a time needs --lat and --lon");
   require_range("--lat", lat_deg_, -90.0, 90.0, "latitude must be in [-90, 90] degrees");
   require_range("--lon", lon_deg_, -180.0, 180.0, "longitude must be in [-180, 180] degrees (east positive)");
   require_range("--tz", tz_hours_, -18.0, 18.0, "UTC offset must be in [-18, 18] hours");
@@ -75,7 +85,7 @@ SunPlacement SunSkyOptions::place_sun() const {
   in.latitude_deg = lat_deg_;
   in.longitude_deg = lon_deg_;
   in.elevation_m = elevation_m_;
-  in.time = parse_iso8601(time_, "--time", o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt);
+  in.time = parse_iso8601(time, where, o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt);
   in.delta_t_s = delta_t_s_;
   in.pressure_mbar = pressure_mbar_;
   in.temperature_C = temperature_C_;
@@ -84,7 +94,7 @@ SunPlacement SunSkyOptions::place_sun() const {
                         {"latitude_deg", lat_deg_},
                         {"longitude_deg", lon_deg_},
                         {"elevation_m", elevation_m_},
-                        {"time", time_},
+                        {"time", time},
                         {"utc_offset_hours", in.time.utc_offset_hours},
                         {"delta_t_s", delta_t_s_},
                         {"julian_day", r.julian_day},

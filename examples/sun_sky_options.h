@@ -35,6 +35,12 @@ class SunSkyOptions {
 
   // The sun (throws InputError: no sun given, both ways given, values out of range).
   SunPlacement place_sun() const;
+  // True if any of --sun-altitude, --sun-azimuth, --time was given (a single moment).
+  bool moment_given() const;
+  // The sun at local time `time` (ISO 8601; --tz is the UTC offset of a time without one) at
+  // --lat/--lon (required: InputError naming `where` and the missing flag) with the SPA options;
+  // `where` prefixes messages (e.g. "times.csv:3").
+  SunPlacement sun_at(const std::string& time, const std::string& where) const;
   // Atmosphere parameters (validated) and the sky model spec (validated).
   AtmosphereParams atmosphere() const;
   SkyModelSpec sky_spec() const;

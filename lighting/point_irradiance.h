@@ -58,4 +58,33 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
                                                       const SkyModel& sky, const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+// A sun position and the hours it stands for (e.g. 0.5 for half-hourly steps).
+struct SunMoment {
+  Vec3 sun_dir;       // unit, world frame (the sky model's sun; may be below the horizon)
+  double hours = 1.0;  // ≥ 0
+};
+
+// Irradiation over many moments under one atmosphere and sky model, per point: Σ_t hours_t·E_t.
+// The sky part is one quadrature of the time-integrated sky Σ_t hours_t·L_t (the moments' sky
+// grids summed, ProjectedSkyGrid::add_scaled: the quadrature is linear in L, so this is the sum
+// of the per-moment sky terms up to the grid's float storage); the sun part is one exact shadow
+// test per moment and point.
+struct PointIrradiation {
+  double svf = 0;
+  double sky_exposure = 0;
+  double sun_hours = 0;   // Σ hours_t over the moments whose sun is visible (see sun_visible)
+  double sky_Wh_m2 = 0;   // diffuse sky irradiation, W·h·m⁻² (380–780 nm)
+  double sun_Wh_m2 = 0;   // direct sun irradiation, W·h·m⁻² (380–780 nm)
+  double sky_lxh = 0;     // diffuse sky light exposure, lx·h
+  double sun_lxh = 0;     // direct sun light exposure, lx·h
+};
+
+// Builds each moment's SkyModel in turn (InputError for invalid parameters or hours, naming the
+// moment's index), so memory does not grow with the number of moments.
+std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std::span<const QueryPoint> points,
+                                                        const AtmosphereParams& atmosphere, const SkyModelSpec& spec,
+                                                        std::span<const SunMoment> moments,
+                                                        const PointIrradianceOptions& options,
+                                                        const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 }  // namespace skyband

@@ -175,3 +175,75 @@ BOOST_AUTO_TEST_CASE(demo_runs) {
   BOOST_TEST(demo_without_sun.exit_code == 2);
   BOOST_TEST(demo_without_sun.err.find("no sun") != std::string::npos);
 }
+
+// --times: sums over moments equal the hours-weighted sums of single-moment runs of the same
+// command (sky within 1e-5: one quadrature of the summed sky grids; sun exactly), and sun_hours
+// counts the hours in sun: the ground point 17 m north of the cube is shadowed by the southern
+// sun (shadow 17.3 m) and lit by the northern one.
+BOOST_AUTO_TEST_CASE(times_sum_the_moments) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_times");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n5,27,0\n";
+  std::ofstream(d / "times.csv") << "sun_altitude,sun_azimuth,hours\n30,180,0.5\n45,0,1.5\n";
+  const std::string base = "irradiance --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv");
+  const auto r = run_skyband(base + " --out " + q(d / "sum.csv") + " --times " + q(d / "times.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const auto sum = read_csv(d / "sum.csv");
+  BOOST_TEST_REQUIRE(sum.size() == 2u);
+  std::vector<double> sky(2, 0.0), sun(2, 0.0), hours(2, 0.0);
+  const double w[] = {0.5, 1.5};
+  const char* suns[] = {" --sun-altitude 30 --sun-azimuth 180", " --sun-altitude 45 --sun-azimuth 0"};
+  for (int t = 0; t < 2; ++t) {
+    const auto s = run_skyband(base + " --out " + q(d / "one.csv") + suns[t]);
+    BOOST_TEST_REQUIRE(s.exit_code == 0, s.err);
+    const auto one = read_csv(d / "one.csv");
+    for (std::size_t i = 0; i < 2; ++i) {
+      sky[i] += w[t] * num(one[i], "sky_W_m2");
+      sun[i] += w[t] * num(one[i], "sun_W_m2");
+      hours[i] += w[t] * num(one[i], "sun_visible");
+    }
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    BOOST_TEST(num(sum[i], "sky_Wh_m2") == sky[i], tt::tolerance(1e-5));
+    BOOST_TEST(num(sum[i], "sun_Wh_m2") == sun[i], tt::tolerance(1e-9));
+    BOOST_TEST(num(sum[i], "sun_hours") == hours[i]);
+    BOOST_TEST(num(sum[i], "global_Wh_m2") == num(sum[i], "sky_Wh_m2") + num(sum[i], "sun_Wh_m2"), tt::tolerance(1e-12));
+  }
+  BOOST_TEST(num(sum[0], "sun_hours") == 2.0);
+  BOOST_TEST(num(sum[1], "sun_hours") == 1.5);
+}
+
+// Bad times files and flags: one line naming the file:line or flag, exit 2, no output file.
+BOOST_AUTO_TEST_CASE(times_errors) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_times_errors");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
+  std::ofstream(d / "both.csv") << "time,sun_altitude,sun_azimuth\n2026-06-21T12:00:00Z,30,180\n";
+  std::ofstream(d / "half.csv") << "sun_altitude,hours\n30,1\n";
+  std::ofstream(d / "neg.csv") << "sun_altitude,sun_azimuth,hours\n30,180,1\n20,90,-2\n";
+  std::ofstream(d / "alt.csv") << "sun_altitude,sun_azimuth\n95,180\n";
+  std::ofstream(d / "time.csv") << "time\n2026-06-21T12:00:00Z\n";
+  std::ofstream(d / "empty.csv") << "sun_altitude,sun_azimuth\n";
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                           q(d / "out.csv") + " --times ";
+  struct Case {
+    std::string args, must_mention;
+  };
+  const Case cases[] = {
+      {base + q(d / "both.csv"), "either a 'time' column"},
+      {base + q(d / "half.csv"), "come together"},
+      {base + q(d / "neg.csv"), "neg.csv:3"},
+      {base + q(d / "alt.csv"), "sun_altitude 95"},
+      {base + q(d / "time.csv"), "--lat and --lon"},
+      {base + q(d / "empty.csv"), "no moments"},
+      {base + q(d / "absent.csv"), "absent.csv"},
+      {base + q(d / "alt.csv") + " --sun-altitude 20", "--times"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_skyband(c.args);
+    BOOST_TEST_INFO(c.args);
+    BOOST_TEST(r.exit_code == 2);
+    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
+    BOOST_TEST(!fs::exists(d / "out.csv"));
+  }
+}

@@ -204,3 +204,46 @@ BOOST_AUTO_TEST_CASE(bad_quadrature_step_is_an_input_error) {
   BOOST_CHECK_THROW(compute_point_irradiance(scene, std::vector<QueryPoint>{at(5, 5, 10)}, make_sky(30, 180, "multiple"), o),
                     InputError);
 }
+
+// Irradiation over moments equals the hours-weighted sum of the single-moment irradiances
+// computed independently (one SkyModel and grid per moment): the sky through the summed grid
+// (linear interpolation and quadrature: equal up to the grids' float storage, 1e-5), the sun
+// term and the sun hours exactly. Moments: the cube's north ground point is shadowed by the sun
+// from the south at 30° (shadow 17.3 m long, the point 12 m away) and lit by a sun from the north;
+// a sun below the horizon adds twilight sky only.
+BOOST_AUTO_TEST_CASE(irradiation_is_the_weighted_sum_of_moments) {
+  const Scene scene(cube());
+  const std::vector<QueryPoint> pts = {at(5, 22, 0), at(5, 5, 10), at(5, -0.0, 5, Vec3(0, -1, 0))};
+  const std::vector<SunMoment> moments = {
+      {direction_from_altitude_azimuth(30 * kDeg, 180 * kDeg), 0.5},
+      {direction_from_altitude_azimuth(40 * kDeg, 10 * kDeg), 1.5},
+      {direction_from_altitude_azimuth(-2 * kDeg, 300 * kDeg), 1.0}};
+  const AtmosphereParams atm;
+  const SkyModelSpec spec = parse_sky_model("multiple", "--model");
+  const auto cum = compute_point_irradiation(scene, pts, atm, spec, moments, PointIrradianceOptions{});
+  std::vector<PointIrradiation> sum(pts.size());
+  for (const SunMoment& m : moments) {
+    const auto r = compute_point_irradiance(scene, pts, SkyModel(atm, m.sun_dir, spec), PointIrradianceOptions{});
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      sum[i].sky_Wh_m2 += m.hours * r[i].sky_W_m2;
+      sum[i].sky_lxh += m.hours * r[i].sky_lx;
+      sum[i].sun_Wh_m2 += m.hours * r[i].sun_W_m2;
+      sum[i].sun_lxh += m.hours * r[i].sun_lx;
+      sum[i].sun_hours += r[i].sun_visible ? m.hours : 0.0;
+    }
+  }
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    BOOST_TEST(cum[i].sky_Wh_m2 == sum[i].sky_Wh_m2, tt::tolerance(1e-5));
+    BOOST_TEST(cum[i].sky_lxh == sum[i].sky_lxh, tt::tolerance(1e-5));
+    BOOST_TEST(cum[i].sun_Wh_m2 == sum[i].sun_Wh_m2, tt::tolerance(1e-12));
+    BOOST_TEST(cum[i].sun_lxh == sum[i].sun_lxh, tt::tolerance(1e-12));
+    BOOST_TEST(cum[i].sun_hours == sum[i].sun_hours);
+  }
+  BOOST_TEST(cum[0].sun_hours == 1.5);  // north ground point: only the northern sun
+  BOOST_TEST(cum[1].sun_hours == 2.0);  // the roof: both suns above the horizon
+  BOOST_TEST(cum[2].sun_hours == 0.5);  // the south wall: only the southern sun
+  BOOST_TEST(cum[0].sky_Wh_m2 > 0.0);
+
+  const std::vector<SunMoment> bad = {{direction_from_altitude_azimuth(30 * kDeg, 180 * kDeg), -1.0}};
+  BOOST_CHECK_THROW(compute_point_irradiation(scene, pts, atm, spec, bad, PointIrradianceOptions{}), InputError);
+}
