@@ -38,6 +38,25 @@ void sky_channels(const PointVisibilityView& v, const ProjectedSkyGrid& grid, do
   integrate_irradiance_channels<2>(v, [&](const Vec3& d, double* c) { grid.lookup_unit_n<2>(d, c); }, out, max_step_rad);
 }
 
+// The visibility of every point, chunk by chunk: fills svf and sky_exposure of out[i] and hands
+// (view, point, the worker's BandVisibility, out[i]) to `fill` for the rest.
+template <class Result, class Fill>
+std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoint> points, const PointIrradianceOptions& options,
+                                   const std::function<void(std::size_t, std::size_t)>& progress, Fill&& fill) {
+  std::vector<Result> out(points.size());
+  for_each_visibility_chunk(scene, points, options.visibility, options.threads, progress,
+                            [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
+                              for (std::size_t i = 0; i < chunk.size(); ++i) {
+                                const PointVisibilityView v = chunk.view(i);
+                                Result& r = out[first + i];
+                                r.svf = sky_view_factor(v);
+                                r.sky_exposure = sky_exposure(v);
+                                fill(v, points[first + i], worker, r);
+                              }
+                            });
+  return out;
+}
+
 }  // namespace
 
 std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points,
@@ -58,31 +77,22 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
     sky_channels(open.view(0), grid, options.max_step_rad, open_sky);
   }
 
-  std::vector<PointIrradiance> out(points.size());
-  for_each_visibility_chunk(
-      scene, points, options.visibility, options.threads, progress,
-      [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
-        for (std::size_t i = 0; i < chunk.size(); ++i) {
-          const PointVisibilityView v = chunk.view(i);
-          PointIrradiance& r = out[first + i];
-          r.svf = sky_view_factor(v);
-          r.sky_exposure = sky_exposure(v);
-          double e[2];
-          sky_channels(v, grid, options.max_step_rad, e);
-          r.sky_W_m2 = e[0];
-          r.sky_lx = e[1];
-          r.sky_ratio = open_sky[1] > 0 ? e[1] / open_sky[1] : 0.0;
-          const QueryPoint& q = points[first + i];
-          r.cos_incidence = q.normal.dot(s);
-          // direction_visible is false for a sun below the horizon or behind the face.
-          r.sun_visible = sun_W_m2 > 0 && r.cos_incidence > 0 && worker.direction_visible(q, s);
-          if (r.sun_visible) {
-            r.sun_W_m2 = sun_W_m2 * r.cos_incidence;
-            r.sun_lx = sun_lx * r.cos_incidence;
-          }
+  return for_each_point<PointIrradiance>(
+      scene, points, options, progress,
+      [&](const PointVisibilityView& v, const QueryPoint& q, BandVisibility& worker, PointIrradiance& r) {
+        double e[2];
+        sky_channels(v, grid, options.max_step_rad, e);
+        r.sky_W_m2 = e[0];
+        r.sky_lx = e[1];
+        r.sky_ratio = open_sky[1] > 0 ? e[1] / open_sky[1] : 0.0;
+        r.cos_incidence = q.normal.dot(s);
+        // direction_visible is false for a sun below the horizon or behind the face.
+        r.sun_visible = sun_W_m2 > 0 && r.cos_incidence > 0 && worker.direction_visible(q, s);
+        if (r.sun_visible) {
+          r.sun_W_m2 = sun_W_m2 * r.cos_incidence;
+          r.sun_lx = sun_lx * r.cos_incidence;
         }
       });
-  return out;
 }
 
 std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std::span<const QueryPoint> points,
@@ -108,33 +118,24 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
     if (dn.integral_nm() > 0 && m.hours > 0) suns.push_back({sky.sun_direction(), m.hours, dn.integral_nm(), luminous(dn)});
   }
 
-  std::vector<PointIrradiation> out(points.size());
-  for_each_visibility_chunk(
-      scene, points, options.visibility, options.threads, progress,
-      [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
-        for (std::size_t i = 0; i < chunk.size(); ++i) {
-          const PointVisibilityView v = chunk.view(i);
-          PointIrradiation& r = out[first + i];
-          r.svf = sky_view_factor(v);
-          r.sky_exposure = sky_exposure(v);
-          if (!moments.empty()) {
-            double e[2];
-            sky_channels(v, sky_hours, options.max_step_rad, e);
-            r.sky_Wh_m2 = e[0];
-            r.sky_lxh = e[1];
-          }
-          const QueryPoint& q = points[first + i];
-          for (const SunTerm& sun : suns) {
-            const double c = q.normal.dot(sun.dir);
-            if (c > 0 && worker.direction_visible(q, sun.dir)) {
-              r.sun_hours += sun.hours;
-              r.sun_Wh_m2 += sun.hours * sun.W_m2 * c;
-              r.sun_lxh += sun.hours * sun.lx * c;
-            }
+  return for_each_point<PointIrradiation>(
+      scene, points, options, progress,
+      [&](const PointVisibilityView& v, const QueryPoint& q, BandVisibility& worker, PointIrradiation& r) {
+        if (!moments.empty()) {
+          double e[2];
+          sky_channels(v, sky_hours, options.max_step_rad, e);
+          r.sky_Wh_m2 = e[0];
+          r.sky_lxh = e[1];
+        }
+        for (const SunTerm& sun : suns) {
+          const double c = q.normal.dot(sun.dir);
+          if (c > 0 && worker.direction_visible(q, sun.dir)) {
+            r.sun_hours += sun.hours;
+            r.sun_Wh_m2 += sun.hours * sun.W_m2 * c;
+            r.sun_lxh += sun.hours * sun.lx * c;
           }
         }
       });
-  return out;
 }
 
 }  // namespace skyband
