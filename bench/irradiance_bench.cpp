@@ -50,6 +50,33 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
                 double(pts.size()) / t_irr, t_irr / t_svf, 100.0 * double(lit) / double(pts.size()));
     if (f.size() != r.size()) std::printf("size mismatch\n");
   }
+  // Sums over a day of moments (hourly, sun from 5° to 65° and back): cost per moment, once and
+  // per point, from two runs with 12 and 24 moments.
+  {
+    auto day = [](int n) {
+      std::vector<SunMoment> m;
+      for (int k = 0; k < n; ++k) {
+        const double f = (k + 0.5) / n;
+        m.push_back({direction_from_altitude_azimuth((5 + 60 * std::sin(kPi * f)) * kPi / 180, (90 + 180 * f) * kPi / 180),
+                     24.0 / n});
+      }
+      return m;
+    };
+    PointIrradianceOptions o;
+    o.threads = max_threads;
+    double t[2];
+    const int counts[2] = {12, 24};
+    for (int i = 0; i < 2; ++i) {
+      const auto moments = day(counts[i]);
+      t0 = Clock::now();
+      const auto r = compute_point_irradiation(scene, pts, AtmosphereParams{}, SkyModelSpec{}, moments, o);
+      t[i] = seconds_since(t0);
+    }
+    const double per_moment = (t[1] - t[0]) / 12;
+    std::printf("sums over moments (%d threads): 12 moments %.2f s, 24 moments %.2f s -> %.3f s per moment for %zu points "
+                "(%.0f us per moment and point, sky model and grid included)\n\n",
+                max_threads, t[0], t[1], per_moment, pts.size(), 1e6 * per_moment / double(pts.size()));
+  }
   // Quadrature error of the sky term against a fine step (0.0125 rad), same cache, and its cost.
   const std::size_t n = std::min<std::size_t>(pts.size(), 400);
   std::vector<QueryPoint> subset(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(n / 2));
