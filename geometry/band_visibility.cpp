@@ -439,7 +439,9 @@ struct BandVisibility::Impl {
   struct PointTriangle {
     const Vec3* v[3];
     Vec3 d[3], L[3];
-    std::uint32_t g[3];
+    // Edge k joins vertices k and k+1; from[k] is the one with the smaller global id, to[k] the
+    // other: the canonical order in which crossings are interpolated (crossing_segment).
+    std::uint8_t from[3], to[3];
   };
 
   // Fills `tr` for triangle t; false if it lies wholly at or below the point's horizon (exact:
@@ -452,7 +454,10 @@ struct BandVisibility::Impl {
     for (int k = 0; k < 3; ++k) {
       tr.d[k] = *tr.v[k] - p;
       tr.L[k] = local_from_world * tr.d[k];
-      tr.g[k] = tri[k];
+      const int k2 = (k + 1) % 3;
+      const bool swap = tri[k2] < tri[k];
+      tr.from[k] = static_cast<std::uint8_t>(swap ? k2 : k);
+      tr.to[k] = static_cast<std::uint8_t>(swap ? k : k2);
     }
     return true;
   }
@@ -463,9 +468,7 @@ struct BandVisibility::Impl {
     PointTriangle tr;
     if (!point_triangle(t, tr)) return;
     ++triangle_tests;
-    const Vec3* d = tr.d;
     const Vec3* L = tr.L;
-    const std::uint32_t* g = tr.g;
     double alo = leaf_alo, ahi = leaf_ahi;
     int k0 = j0, k1 = j1;
     if (own_ranges) {
@@ -492,7 +495,7 @@ struct BandVisibility::Impl {
         edge_on_checked = true;
       }
       double ea[2], eb[2];
-      if (!crossing_segment(pl, d, L, g, ea, eb)) continue;
+      if (!crossing_segment(pl, tr, ea, eb)) continue;
       if (add_segment(occluded, ea[0], eb[0], ea[1], eb[1])) {
         contributed = true;
         blocks[j / kBlock].dirty = true;
@@ -512,13 +515,14 @@ struct BandVisibility::Impl {
     }
   }
 
-  // The section of a triangle (vertex offsets d from the point, L = the same in the local frame,
-  // global vertex ids g) by the plane: its two in-plane end points (a along the axis, b across
-  // it). False unless the triangle crosses the plane, i.e. has vertices strictly on both sides
+  // The section of a triangle seen from the point (vertex offsets d, the same in the local frame L,
+  // canonical edge order from/to) by the plane: its two in-plane end points (a along the axis, b
+  // across it). False unless the triangle crosses the plane, i.e. has vertices strictly on both sides
   // (exact signs); touching it at a vertex or along an edge hides nothing the neighbours do not
   // (docs/geometry.md).
-  static bool crossing_segment(const ActivePlane& pl, const Vec3 d[3], const Vec3 L[3], const std::uint32_t g[3],
-                               double ea[2], double eb[2]) {
+  static bool crossing_segment(const ActivePlane& pl, const PointTriangle& tr, double ea[2], double eb[2]) {
+    const Vec3* d = tr.d;
+    const Vec3* L = tr.L;
     double val[3];
     int sg[3];
     for (int k = 0; k < 3; ++k) sg[k] = exact_dot_sign(pl.m, d[k], val[k]);
@@ -536,8 +540,7 @@ struct BandVisibility::Impl {
       if (sg[k] * sg[k2] >= 0) continue;
       // Canonical order (by global vertex id): both triangles sharing this edge compute the
       // bit-identical crossing point.
-      int a = k, b = k2;
-      if (g[b] < g[a]) std::swap(a, b);
+      const int a = tr.from[k], b = tr.to[k];
       double t = val[a] / (val[a] - val[b]);
       t = std::clamp(t, 0.0, 1.0);
       const Vec3 q = L[a] + t * (L[b] - L[a]);
@@ -852,7 +855,7 @@ struct BandVisibility::Impl {
         if (!pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, tlo, thi) || !may_hide(tb, tlo, thi)) continue;
         if (exact_orientation(*tr.v[0], *tr.v[1], *tr.v[2], p) == 0) continue;
         double ea[2], eb[2], lo, hi;
-        if (!crossing_segment(pl, tr.d, tr.L, tr.g, ea, eb)) continue;
+        if (!crossing_segment(pl, tr, ea, eb)) continue;
         if (segment_span(ea[0], eb[0], ea[1], eb[1], lo, hi) && lo <= pa && pa <= hi) return Visit::kStop;
       }
       return Visit::kSkip;
