@@ -96,9 +96,10 @@ void run_times(const IrradianceArgs& a) {
   const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
-  Progress progress("irradiance", !a.job.quiet);
+  Progress progress("irradiance", !a.job.quiet), sky_progress("irradiance: skies", !a.job.quiet, "moments");
   const std::vector<PointIrradiation> r = compute_point_irradiation(
-      scene, table.points, atm, spec, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
+      scene, table.points, atm, spec, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); },
+      [&](std::size_t d, std::size_t t) { sky_progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const std::vector<std::string> columns = {"svf",        "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",

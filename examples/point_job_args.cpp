@@ -60,7 +60,7 @@ void Progress::operator()(std::size_t done, std::size_t total) {
   if (done < total && elapsed - last_ < 0.5) return;
   if (elapsed < 1.0 && done < total) return;  // short runs stay quiet
   last_ = elapsed;
-  std::fprintf(stderr, "\r%s: %zu / %zu points (%.0f%%), %.1f s", label_.c_str(), done, total,
+  std::fprintf(stderr, "\r%s: %zu / %zu %s (%.0f%%), %.1f s", label_.c_str(), done, total, unit_.c_str(),
                100.0 * double(done) / double(total ? total : 1), elapsed);
   if (done == total) {
     std::fprintf(stderr, "\n");

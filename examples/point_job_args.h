@@ -37,16 +37,17 @@ class PointJobArgs {
   CLI::Option *o_bands_ = nullptr, *o_tolerance_ = nullptr;
 };
 
-// "\r<label>: done / total points (p%), t s" on stderr at most twice a second, silent for runs
+// "\r<label>: done / total <unit> (p%), t s" on stderr at most twice a second, silent for runs
 // under a second; the final line once.
 class Progress {
  public:
-  Progress(std::string label, bool enabled)
-      : label_(std::move(label)), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  // `unit`: what is counted ("points", "moments").
+  Progress(std::string label, bool enabled, std::string unit = "points")
+      : label_(std::move(label)), unit_(std::move(unit)), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
   void operator()(std::size_t done, std::size_t total);
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   bool enabled_;
   std::chrono::steady_clock::time_point start_;
   double last_ = 0;

@@ -99,7 +99,8 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
                                                         const AtmosphereParams& atmosphere, const SkyModelSpec& spec,
                                                         std::span<const SunMoment> moments,
                                                         const PointIrradianceOptions& options,
-                                                        const std::function<void(std::size_t, std::size_t)>& progress) {
+                                                        const std::function<void(std::size_t, std::size_t)>& progress,
+                                                        const std::function<void(std::size_t, std::size_t)>& sky_progress) {
   check_step(options.max_step_rad);
   struct SunTerm {
     Vec3 dir;
@@ -116,6 +117,7 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
     sky_hours.add_scaled(project_sky(sky, options.threads), m.hours);
     const Spectrum& dn = sky.sun_direct_normal();
     if (dn.integral_nm() > 0 && m.hours > 0) suns.push_back({sky.sun_direction(), m.hours, dn.integral_nm(), luminous(dn)});
+    if (sky_progress) sky_progress(t + 1, moments.size());
   }
 
   return for_each_point<PointIrradiation>(

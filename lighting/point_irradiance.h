@@ -80,11 +80,13 @@ struct PointIrradiation {
 };
 
 // Builds each moment's SkyModel in turn (InputError for invalid parameters or hours, naming the
-// moment's index), so memory does not grow with the number of moments.
+// moment's index), so memory does not grow with the number of moments. `sky_progress(done,
+// total)` after each moment's sky, then `progress(done, total)` over the points.
 std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std::span<const QueryPoint> points,
                                                         const AtmosphereParams& atmosphere, const SkyModelSpec& spec,
                                                         std::span<const SunMoment> moments,
                                                         const PointIrradianceOptions& options,
-                                                        const std::function<void(std::size_t, std::size_t)>& progress = {});
+                                                        const std::function<void(std::size_t, std::size_t)>& progress = {},
+                                                        const std::function<void(std::size_t, std::size_t)>& sky_progress = {});
 
 }  // namespace skyband
