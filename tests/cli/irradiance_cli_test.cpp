@@ -136,10 +136,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
   std::ofstream(d / "nan.csv") << "x,y,z\n1,nan,3\n";
   const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --out " + q(d / "out.csv");
   const std::string pts = " --points " + q(d / "ok.csv");
-  struct Case {
-    std::string args, must_mention;
-  };
-  const Case cases[] = {
+  skyband::test::check_bad_input({
       {base + pts, "no sun"},
       {base + pts + " --sun-altitude 95", "--sun-altitude 95"},
       {base + pts + " --sun-altitude 30 --lat 10 --lon 10 --time 2026-01-01T12:00:00Z", "not both"},
@@ -151,14 +148,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
       {base + " --points " + q(d / "absent.csv") + " --sun-altitude 30", "absent.csv"},
       {base + " --points " + q(d / "nan.csv") + " --sun-altitude 30", "nan.csv"},
       {"irradiance --mesh " + q(d / "cube.obj") + pts + " --sun-altitude 30", "--out"},
-  };
-  for (const Case& c : cases) {
-    const auto r = run_skyband(c.args);
-    BOOST_TEST_INFO(c.args);
-    BOOST_TEST(r.exit_code == 2);
-    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
-    BOOST_TEST(!fs::exists(d / "out.csv"));
-  }
+  }, d / "out.csv");
 }
 
 // The built-in demo prints its table; the open roof of the tower has sky_ratio 1 (it is an
@@ -226,10 +216,7 @@ BOOST_AUTO_TEST_CASE(times_errors) {
   std::ofstream(d / "empty.csv") << "sun_altitude,sun_azimuth\n";
   const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
                            q(d / "out.csv") + " --times ";
-  struct Case {
-    std::string args, must_mention;
-  };
-  const Case cases[] = {
+  skyband::test::check_bad_input({
       {base + q(d / "both.csv"), "either a 'time' column"},
       {base + q(d / "half.csv"), "come together"},
       {base + q(d / "neg.csv"), "neg.csv:3"},
@@ -238,12 +225,5 @@ BOOST_AUTO_TEST_CASE(times_errors) {
       {base + q(d / "empty.csv"), "no moments"},
       {base + q(d / "absent.csv"), "absent.csv"},
       {base + q(d / "alt.csv") + " --sun-altitude 20", "--times"},
-  };
-  for (const Case& c : cases) {
-    const auto r = run_skyband(c.args);
-    BOOST_TEST_INFO(c.args);
-    BOOST_TEST(r.exit_code == 2);
-    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
-    BOOST_TEST(!fs::exists(d / "out.csv"));
-  }
+  }, d / "out.csv");
 }

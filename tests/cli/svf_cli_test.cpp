@@ -91,10 +91,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
   std::ofstream(d / "nan.obj") << "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(d / "badindex.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
   const std::string out = " --out " + q(d / "out.csv");
-  struct Case {
-    std::string args, must_mention;
-  };
-  const Case cases[] = {
+  skyband::test::check_bad_input({
       {"svf --mesh " + q(d / "missing.obj") + " --points " + q(d / "ok.csv") + out, "missing.obj"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "absent.csv") + out, "absent.csv"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "badnum.csv") + out, "five"},
@@ -106,14 +103,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
        "no_such_dir"},
-  };
-  for (const Case& c : cases) {
-    const auto r = run_skyband(c.args);
-    BOOST_TEST_INFO(c.args);
-    BOOST_TEST(r.exit_code == 2);
-    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
-    BOOST_TEST(!fs::exists(d / "out.csv"));
-  }
+  }, d / "out.csv");
 }
 
 // The built-in demo prints its table.

@@ -1,5 +1,7 @@
 #include "cli/support/cli_runner.h"
 
+#include <boost/test/unit_test.hpp>
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -29,6 +31,16 @@ std::string slurp(const std::filesystem::path& p) {
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
+}
+
+void check_bad_input(const std::vector<BadInputCase>& cases, const std::filesystem::path& must_not_exist) {
+  for (const BadInputCase& c : cases) {
+    const CliResult r = run_skyband(c.args);
+    BOOST_TEST_INFO(c.args);
+    BOOST_TEST(r.exit_code == 2);
+    BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
+    BOOST_TEST(!std::filesystem::exists(must_not_exist));
+  }
 }
 
 void write_cube_obj(const std::filesystem::path& file) {

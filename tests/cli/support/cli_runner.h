@@ -2,6 +2,7 @@
 // Runs the built skyband CLI ($SKYBAND_EXE, set by CTest) and captures exit code, stdout, stderr.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace skyband::test {
 
@@ -21,6 +22,16 @@ std::string shell_quote(const std::filesystem::path& p);
 
 // The whole content of a file.
 std::string slurp(const std::filesystem::path& p);
+
+// A command that must fail on bad input: exit code 2, and stderr mentioning `must_mention` (the
+// file, line, flag or value at fault).
+struct BadInputCase {
+  std::string args, must_mention;
+};
+
+// Runs each case and checks it (Boost.Test assertions, each labelled with the command), and
+// that `must_not_exist` (the output the command was asked to write) was never created.
+void check_bad_input(const std::vector<BadInputCase>& cases, const std::filesystem::path& must_not_exist);
 
 // A closed 10 m cube [0,10]³ as six OBJ quads (our own geometry; the closed forms of the CLI
 // tests are computed for it).
