@@ -141,7 +141,10 @@ void run_demo(const IrradianceArgs& a) {
 }
 
 void run(const IrradianceArgs& a) {
-  if (a.demo) return run_demo(a);
+  if (a.demo) {
+    if (!a.times.empty()) throw InputError("--demo takes one sun (--sun-altitude or --lat/--lon/--time), not --times");
+    return run_demo(a);
+  }
   if (!a.times.empty()) {
     a.job.require_files("irradiance");
     return run_times(a);

@@ -164,6 +164,9 @@ BOOST_AUTO_TEST_CASE(demo_runs) {
   const auto demo_without_sun = run_skyband("irradiance --demo");
   BOOST_TEST(demo_without_sun.exit_code == 2);
   BOOST_TEST(demo_without_sun.err.find("no sun") != std::string::npos);
+  const auto demo_with_times = run_skyband("irradiance --demo --times whatever.csv");
+  BOOST_TEST(demo_with_times.exit_code == 2);
+  BOOST_TEST(demo_with_times.err.find("--times") != std::string::npos);
 }
 
 // --times: sums over moments equal the hours-weighted sums of single-moment runs of the same
