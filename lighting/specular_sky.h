@@ -342,50 +342,49 @@ template <class Policy>
 void integrate_nodes3(const PointContext& c, const Line& line, const double (&cos_a)[3], const double (&sin_a)[3],
                       double half, Policy& p, typename Policy::Value& scratch, typename Policy::Value& cell, Level& level,
                       SpecularSkyStats& stats) {
-  double k[3], v_dot_h[3];
+  double k[3], v_dot_h[3], n_dot_w[3], v_dot_w[3];
   Level l[3];
+  for (int n = 0; n < 3; ++n) {
+    n_dot_w[n] = cos_a[n] * c.n_dot_x + sin_a[n] * line.n_dot_u;
+    v_dot_w[n] = cos_a[n] * c.v_dot_x + sin_a[n] * line.v_dot_u;
+  }
+  // The AVX2 build (wants_avx2_lobe) computes the three lobe factors in vector lanes and, where
+  // the policy offers eval3, the three directions and grid cells too.
+  constexpr bool kAvx2 = wants_avx2_lobe<Policy>();
+  if constexpr (kAvx2) {
 #if SKYBAND_LOBE_AVX2
-  if constexpr (wants_avx2_lobe<Policy>()) {
-    double n_dot_w[3], v_dot_w[3], x[3] = {l[0].x, l[1].x, l[2].x};
-    for (int n = 0; n < 3; ++n) {
-      n_dot_w[n] = cos_a[n] * c.n_dot_x + sin_a[n] * line.n_dot_u;
-      v_dot_w[n] = cos_a[n] * c.v_dot_x + sin_a[n] * line.v_dot_u;
-    }
+    double x[3] = {l[0].x, l[1].x, l[2].x};
     lobe_factor3_avx2(c.lobe_k, n_dot_w, v_dot_w, sin_a, k, v_dot_h, x);
     for (int n = 0; n < 3; ++n) l[n].x = x[n];
-    if constexpr (requires(typename Policy::Value (&o)[3], double (&g)[3]) {
-                    p.eval3(cos_a, sin_a, line.u, line.u, v_dot_h, k, o, g);
-                  }) {
-      typename Policy::Value out[3];
-      double g[3];
-      p.eval3(cos_a, sin_a, c.view->frame().x, line.u, v_dot_h, k, out, g);
-      for (int n = 0; n < 3; ++n) {
-        if (k[n] > 0.0) {
-          ++stats.radiance_evals;
-          l[n].g = g[n];
-          if (l[n].g > 0.0) cell += out[n] * (half * kGl3W[n]);
-        }
-        raise(level, l[n]);
-      }
-      return;
-    }
-  } else
 #endif
-  {
-    for (int n = 0; n < 3; ++n) {
-      const double n_dot_w = cos_a[n] * c.n_dot_x + sin_a[n] * line.n_dot_u;
-      const double v_dot_w = cos_a[n] * c.v_dot_x + sin_a[n] * line.v_dot_u;
-      k[n] = lobe_factor(c.lobe_k, n_dot_w, v_dot_w, v_dot_h[n], &l[n].x) * sin_a[n] * sin_a[n];
-    }
+  } else {
+    for (int n = 0; n < 3; ++n)
+      k[n] = lobe_factor(c.lobe_k, n_dot_w[n], v_dot_w[n], v_dot_h[n], &l[n].x) * sin_a[n] * sin_a[n];
   }
   const BandFrame& f = c.view->frame();
-  for (int n = 0; n < 3; ++n) {
-    if (k[n] > 0.0) {
-      ++stats.radiance_evals;
-      l[n].g = p.eval(cos_a[n] * f.x + sin_a[n] * line.u, v_dot_h[n], k[n], scratch);
-      if (l[n].g > 0.0) cell += scratch * (half * kGl3W[n]);
+  if constexpr (kAvx2 && requires(typename Policy::Value (&o)[3], double (&g)[3]) {
+                  p.eval3(cos_a, sin_a, f.x, line.u, v_dot_h, k, o, g);
+                }) {
+    typename Policy::Value out[3];
+    double g[3];
+    p.eval3(cos_a, sin_a, f.x, line.u, v_dot_h, k, out, g);
+    for (int n = 0; n < 3; ++n) {
+      if (k[n] > 0.0) {
+        ++stats.radiance_evals;
+        l[n].g = g[n];
+        if (l[n].g > 0.0) cell += out[n] * (half * kGl3W[n]);
+      }
+      raise(level, l[n]);
     }
-    raise(level, l[n]);
+  } else {
+    for (int n = 0; n < 3; ++n) {
+      if (k[n] > 0.0) {
+        ++stats.radiance_evals;
+        l[n].g = p.eval(cos_a[n] * f.x + sin_a[n] * line.u, v_dot_h[n], k[n], scratch);
+        if (l[n].g > 0.0) cell += scratch * (half * kGl3W[n]);
+      }
+      raise(level, l[n]);
+    }
   }
 }
 
