@@ -89,20 +89,14 @@ Xyz ColourSpecularSky::dispatch(const PointVisibilityView& view, const Vec3& vie
   if (lobe.fresnel != fresnel_) throw std::logic_error("ColourSpecularSky: lobe with a different Fresnel table");
   SpecularSkyStats stats;
   Xyz r;
-  if (avx2) {
-    switch (rank_) {
-      case 1: r = integrate_avx2<1>(view, view_dir, lobe, opt, stats); break;
-      case 2: r = integrate_avx2<2>(view, view_dir, lobe, opt, stats); break;
-      case 3: r = integrate_avx2<3>(view, view_dir, lobe, opt, stats); break;
-      default: r = integrate_avx2<4>(view, view_dir, lobe, opt, stats); break;
-    }
-  } else {
-    switch (rank_) {
-      case 1: r = integrate<1>(view, view_dir, lobe, opt, stats); break;
-      case 2: r = integrate<2>(view, view_dir, lobe, opt, stats); break;
-      case 3: r = integrate<3>(view, view_dir, lobe, opt, stats); break;
-      default: r = integrate<4>(view, view_dir, lobe, opt, stats); break;
-    }
+  auto run = [&]<int R>() {
+    return avx2 ? integrate_avx2<R>(view, view_dir, lobe, opt, stats) : integrate<R>(view, view_dir, lobe, opt, stats);
+  };
+  switch (rank_) {
+    case 1: r = run.template operator()<1>(); break;
+    case 2: r = run.template operator()<2>(); break;
+    case 3: r = run.template operator()<3>(); break;
+    default: r = run.template operator()<4>(); break;
   }
   if (stats_out) *stats_out = stats;
   return r;
