@@ -88,40 +88,22 @@ SkyLut SkyLut::project(std::span<const Spectrum> weights) const {
 }
 
 void SkyLut::add_interval(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const {
-  const std::size_t nc = static_cast<std::size_t>(channels_);
-  if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
-    const double* w = &whole_[line * nc];
-    for (std::size_t i = 0; i < nc; ++i) acc[i] += weight * w[i];
-    return;
-  }
-  int j0, j1;
-  double t0, t1;
-  locate(alpha0_rad, j0, t0);
-  locate(alpha1_rad, j1, t1);
-  const std::size_t c = static_cast<std::size_t>(channels_);
-  const double* a0 = row(line, j0);
-  const double* b0 = a0 + c;
-  const double* a1 = row(line, j1);
-  const double* b1 = a1 + c;
-  for (std::size_t i = 0; i < c; ++i)
-    acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+  accumulate(line, alpha0_rad, alpha1_rad, weight, acc, static_cast<std::size_t>(channels_));
 }
 
 void diffuse_sky_channels(const PointVisibilityView& v, const SkyLut& lut, double* out) {
   for (int k = 0; k < lut.channels(); ++k) out[k] = 0.0;
   const std::size_t n = std::min(v.band_count(), lut.line_count());
-  if (lut.channels() == 3) {  // XYZ: the renderer's tables
+  auto sum = [&](auto&& add) {
     for (std::size_t b = 0; b < n; ++b) {
       const double w = v.band_weight(b);
-      for (const VisibleInterval& iv : v.visible(b))
-        lut.add_interval_n<3>(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, out);
+      for (const VisibleInterval& iv : v.visible(b)) add(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w);
     }
-    return;
-  }
-  for (std::size_t b = 0; b < n; ++b) {
-    const double w = v.band_weight(b);
-    for (const VisibleInterval& iv : v.visible(b))
-      lut.add_interval(b, clamp_alpha(iv.alpha0_rad), clamp_alpha(iv.alpha1_rad), w, out);
+  };
+  if (lut.channels() == 3) {  // XYZ, the renderer's tables: the channel loop unrolled
+    sum([&](std::size_t b, double a0, double a1, double w) { lut.add_interval_n<3>(b, a0, a1, w, out); });
+  } else {
+    sum([&](std::size_t b, double a0, double a1, double w) { lut.add_interval(b, a0, a1, w, out); });
   }
 }
 

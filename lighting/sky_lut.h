@@ -61,20 +61,7 @@ class SkyLut {
   // renderer's diffuse pass: ~5·10⁷ intervals per image); the same expression, so the same bits.
   template <int N>
   void add_interval_n(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc) const {
-    if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
-      const double* w = &whole_[line * N];
-      for (int i = 0; i < N; ++i) acc[i] += weight * w[i];
-      return;
-    }
-    int j0, j1;
-    double t0, t1;
-    locate(alpha0_rad, j0, t0);
-    locate(alpha1_rad, j1, t1);
-    const double* a0 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j0)) * N];
-    const double* b0 = a0 + N;
-    const double* a1 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j1)) * N];
-    const double* b1 = a1 + N;
-    for (int i = 0; i < N; ++i) acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+    accumulate(line, alpha0_rad, alpha1_rad, weight, acc, N);
   }
 
  private:
@@ -82,6 +69,26 @@ class SkyLut {
   const double* row(std::size_t line, int node) const {
     return &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(node)) *
                    static_cast<std::size_t>(channels_)];
+  }
+  // acc[i] += weight·(E_l(α1) − E_l(α0))[i], i < nc == channels(): the one body of both
+  // add_interval forms (inlined with a constant nc, the channel loop unrolls).
+  void accumulate(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc,
+                  std::size_t nc) const {
+    if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
+      const double* w = &whole_[line * nc];
+      for (std::size_t i = 0; i < nc; ++i) acc[i] += weight * w[i];
+      return;
+    }
+    int j0, j1;
+    double t0, t1;
+    locate(alpha0_rad, j0, t0);
+    locate(alpha1_rad, j1, t1);
+    const double* a0 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j0)) * nc];
+    const double* b0 = a0 + nc;
+    const double* a1 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j1)) * nc];
+    const double* b1 = a1 + nc;
+    for (std::size_t i = 0; i < nc; ++i)
+      acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
   }
   void locate(double alpha_rad, int& node, double& t) const {
     const double x = std::clamp(alpha_rad, 0.0, kPi) * inv_step_;  // a product: ~10⁸ per image
