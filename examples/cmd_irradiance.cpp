@@ -48,6 +48,14 @@ struct IrradianceArgs {
   bool demo = false;
 };
 
+// Accuracy and threads from the shared per-point options (validated there).
+PointIrradianceOptions irradiance_options(const PointJobArgs& job) {
+  PointIrradianceOptions opt;
+  opt.visibility = job.visibility_options();
+  opt.threads = job.threads;
+  return opt;
+}
+
 // The moments of a times file: a header with either `time` (ISO 8601 local time; needs --lat and
 // --lon) or `sun_altitude` and `sun_azimuth` (degrees), and optionally `hours` (the duration each
 // row stands for, ≥ 0; default 1). Errors name the file, line, column and value.
@@ -85,9 +93,7 @@ void run_times(const IrradianceArgs& a) {
   if (a.sun_sky.moment_given())
     throw InputError("--times: the suns come from the times file; --sun-altitude, --sun-azimuth and --time do not "
                      "apply (--tz gives the UTC offset of times written without one)");
-  PointIrradianceOptions opt;
-  opt.visibility = a.job.visibility_options();
-  opt.threads = a.job.threads;
+  const PointIrradianceOptions opt = irradiance_options(a.job);
   const AtmosphereParams atm = a.sun_sky.atmosphere();
   const SkyModelSpec spec = a.sun_sky.sky_spec();
   const std::vector<SunMoment> moments = read_moments(a);
@@ -121,9 +127,7 @@ void run_times(const IrradianceArgs& a) {
 
 // The built-in street block of `svf --demo` under the given sun and sky: a table on stdout.
 void run_demo(const IrradianceArgs& a) {
-  PointIrradianceOptions opt;
-  opt.visibility = a.job.visibility_options();
-  opt.threads = a.job.threads;
+  const PointIrradianceOptions opt = irradiance_options(a.job);
   const SunPlacement sun = a.sun_sky.place_sun();
   const SkyModel sky = a.sun_sky.make_sky(sun);
   const DemoScene demo = make_demo_scene();
@@ -151,9 +155,7 @@ void run(const IrradianceArgs& a) {
   }
   // Everything the user typed is validated before any file is read or written.
   a.job.require_files("irradiance", " (or --demo)");
-  PointIrradianceOptions opt;
-  opt.visibility = a.job.visibility_options();
-  opt.threads = a.job.threads;
+  const PointIrradianceOptions opt = irradiance_options(a.job);
   const SunPlacement sun = a.sun_sky.place_sun();
   const SkyModel sky = a.sun_sky.make_sky(sun);
 
