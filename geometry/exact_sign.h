@@ -60,4 +60,12 @@ inline int exact_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return exact_orientation_slow(a, b, c, d);
 }
 
+// Sign of the orientation of the xy-projections of a, b, c: +1 counter-clockwise seen from above
+// (the triangle's normal points up), −1 clockwise, 0 collinear (a vertical or degenerate triangle).
+// The 2D determinant is the 3D one of the points lifted to z = 0 against (0, 0, 1), whose
+// differences are exact: det[a − d, b − d, c − d] = −orient2d(a, b, c).
+inline int exact_orient2d_sign(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return -exact_orientation(Vec3(a.x(), a.y(), 0), Vec3(b.x(), b.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
+}
+
 }  // namespace skyband

@@ -1,5 +1,7 @@
 #include "geometry/scene.h"
 
+#include "geometry/column_scene.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,6 +28,11 @@ double area(const Aabb& b) {
 }  // namespace
 
 Scene::Scene(TriangleSoup soup) : soup_(std::move(soup)) { build(); }
+
+const ColumnScene& Scene::column_scene() const {
+  std::call_once(column_once_, [&] { column_scene_ = std::make_shared<const ColumnScene>(classify_column_scene(soup_)); });
+  return *column_scene_;
+}
 
 Vec3 Scene::triangle_normal(std::uint32_t t) const {
   const auto& tri = soup_.triangles[t];

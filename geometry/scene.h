@@ -2,6 +2,8 @@
 // The scene: a triangle soup plus a bounding-volume hierarchy over it. Built once, read-only
 // afterwards and safe to share between threads.
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -9,6 +11,8 @@
 #include "geometry/vec3.h"
 
 namespace skyband {
+
+struct ColumnScene;
 
 struct Aabb {
   Vec3 lo{+1e300, +1e300, +1e300};
@@ -56,6 +60,10 @@ class Scene {
   // Geometric (unnormalised) normal of triangle t by its winding: (v1 − v0) × (v2 − v0).
   Vec3 triangle_normal(std::uint32_t t) const;
 
+  // The scene's column-solid classification (geometry/column_scene.h), computed on first use
+  // (thread-safe) and kept.
+  const ColumnScene& column_scene() const;
+
   // Closest hit along the ray (watertight ray/triangle test), or nothing.
   std::optional<RayHit> intersect(const Ray& ray) const;
   // The closest hit as a shading point: the point on the triangle from the barycentrics (more
@@ -69,6 +77,8 @@ class Scene {
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> order_;
   Aabb empty_box_;
+  mutable std::once_flag column_once_;
+  mutable std::shared_ptr<const ColumnScene> column_scene_;
 };
 
 }  // namespace skyband

@@ -1,0 +1,234 @@
+#include "geometry/column_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <tuple>
+#include <vector>
+
+#include "geometry/exact_sign.h"
+
+namespace skyband {
+
+namespace {
+
+// Union–find over triangles.
+struct Components {
+  std::vector<std::uint32_t> parent;
+  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Welded vertex id per stored vertex: exactly equal positions (+0 and −0 equal) share one id.
+std::vector<std::uint32_t> weld(const std::vector<Vec3>& v) {
+  std::vector<std::uint32_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto key = [&](std::uint32_t i) { return std::make_tuple(v[i].x(), v[i].y(), v[i].z()); };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::vector<std::uint32_t> id(v.size());
+  std::uint32_t next = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && key(order[k]) != key(order[k - 1])) ++next;
+    id[order[k]] = next;
+  }
+  return id;
+}
+
+struct DirectedEdge {
+  std::uint32_t lo, hi;  // welded ids, lo < hi
+  bool forward;          // traversed lo → hi
+  std::uint32_t component;
+  std::uint32_t triangle;
+  std::uint8_t side;     // k: the side v_k → v_{k+1}
+};
+
+// For coplanar a, b, c, d: are c and d strictly on opposite sides of line ab? Exact, in the
+// coordinate plane the points' plane projects onto without collapsing.
+bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 n = (b - a).cross(c - a);
+  int drop = 2;  // the axis along the normal's largest component
+  if (std::abs(n.x()) >= std::abs(n.y()) && std::abs(n.x()) >= std::abs(n.z())) drop = 0;
+  else if (std::abs(n.y()) >= std::abs(n.z())) drop = 1;
+  const auto proj = [drop](const Vec3& v) {
+    return drop == 0 ? Vec3(v.y(), v.z(), 0) : drop == 1 ? Vec3(v.z(), v.x(), 0) : Vec3(v.x(), v.y(), 0);
+  };
+  const int sc = exact_orient2d_sign(proj(a), proj(b), proj(c)), sd = exact_orient2d_sign(proj(a), proj(b), proj(d));
+  return sc * sd < 0;
+}
+
+// Median-split BVH over the edges (longest axis of the centroids' box, leaves of ≤ 4 edges):
+// deterministic, O(n log n); the edges are reordered into leaf order.
+void build_edge_bvh(ColumnScene& out) {
+  std::vector<SilhouetteEdge>& edges = out.edges;
+  out.edge_nodes.clear();
+  if (edges.empty()) return;
+  const auto centre = [](const SilhouetteEdge& e, int axis) { return 0.5 * (e.a[axis] + e.b[axis]); };
+  struct Task {
+    std::uint32_t node, first, count;
+  };
+  out.edge_nodes.push_back({});
+  std::vector<Task> stack{{0, 0, std::uint32_t(edges.size())}};
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    Aabb box, centres;
+    for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
+      box.extend(edges[i].a);
+      box.extend(edges[i].b);
+      centres.extend(0.5 * (edges[i].a + edges[i].b));
+    }
+    out.edge_nodes[task.node].box = box;
+    if (task.count <= 4) {
+      out.edge_nodes[task.node].first = task.first;
+      out.edge_nodes[task.node].count = task.count;
+      continue;
+    }
+    const Vec3 extent = centres.hi - centres.lo;
+    const int axis = extent.x() >= extent.y() ? (extent.x() >= extent.z() ? 0 : 2) : (extent.y() >= extent.z() ? 1 : 2);
+    const std::uint32_t half = task.count / 2;
+    auto begin = edges.begin() + task.first;
+    std::nth_element(begin, begin + half, begin + task.count, [&](const SilhouetteEdge& x, const SilhouetteEdge& y) {
+      const double cx = centre(x, axis), cy = centre(y, axis);
+      if (cx != cy) return cx < cy;
+      return std::tie(x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2]) < std::tie(y.a[0], y.a[1], y.a[2], y.b[0], y.b[1], y.b[2]);
+    });
+    const std::uint32_t left = std::uint32_t(out.edge_nodes.size());
+    out.edge_nodes.push_back({});
+    out.edge_nodes.push_back({});
+    out.edge_nodes[task.node].first = left;
+    out.edge_nodes[task.node].count = 0;
+    stack.push_back({left + 1, task.first + half, task.count - half});
+    stack.push_back({left, task.first, half});
+  }
+}
+
+}  // namespace
+
+ColumnScene classify_column_scene(const TriangleSoup& soup) {
+  ColumnScene out;
+  const std::size_t nt = soup.triangles.size();
+  if (nt == 0) return out;
+  const std::vector<std::uint32_t> wid = weld(soup.vertices);
+
+  // Triangles sharing a welded vertex belong to one component.
+  Components comp(nt);
+  {
+    std::vector<std::uint32_t> first_triangle(soup.vertices.size(), UINT32_MAX);
+    for (std::uint32_t t = 0; t < nt; ++t)
+      for (std::uint32_t vi : soup.triangles[t]) {
+        std::uint32_t& f = first_triangle[wid[vi]];
+        if (f == UINT32_MAX) f = t;
+        else comp.join(f, t);
+      }
+  }
+  std::vector<std::uint32_t> root(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) root[t] = comp.find(t);
+
+  struct ComponentState {
+    bool closed_ok = true;
+    double z_min = 1e300;
+    double volume6 = 0;  // 6 × signed volume, relative to the component's first vertex
+    Vec3 reference;
+    bool has_reference = false;
+  };
+  std::vector<ComponentState> state(nt);  // indexed by root triangle
+  std::vector<DirectedEdge> edges;
+  edges.reserve(3 * nt);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    ComponentState& s = state[root[t]];
+    const auto& tri = soup.triangles[t];
+    const std::array<std::uint32_t, 3> w{wid[tri[0]], wid[tri[1]], wid[tri[2]]};
+    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) s.closed_ok = false;
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    if (!s.has_reference) {
+      s.reference = a;
+      s.has_reference = true;
+    }
+    s.z_min = std::min({s.z_min, a.z(), b.z(), c.z()});
+    s.volume6 += (a - s.reference).dot((b - s.reference).cross(c - s.reference));
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t p = w[k], q = w[(k + 1) % 3];
+      if (p != q) edges.push_back({std::min(p, q), std::max(p, q), p < q, root[t], t, std::uint8_t(k)});
+    }
+  }
+  // Closed and consistently oriented: every undirected edge exactly twice, once each way.
+  std::sort(edges.begin(), edges.end(),
+            [](const DirectedEdge& x, const DirectedEdge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    if (j - i != 2 || edges[i].forward == edges[i + 1].forward) state[edges[i].component].closed_ok = false;
+    i = j;
+  }
+
+  // Down-facing triangles (outward normal below the horizontal) must lie in the floor plane.
+  std::vector<char> column(nt, 0);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (root[t] == t) column[t] = state[t].closed_ok && state[t].volume6 != 0;
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t r = root[t];
+    if (!column[r]) continue;
+    const auto& tri = soup.triangles[t];
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    const int up = exact_orient2d_sign(a, b, c) * (state[r].volume6 > 0 ? 1 : -1);
+    const double zf = state[r].z_min;
+    if (up < 0 && !(a.z() == zf && b.z() == zf && c.z() == zf)) column[r] = 0;
+  }
+
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t r = root[t];
+    if (r == t) {
+      if (column[r]) {
+        ++out.column_solids;
+        out.max_column_floor_z = std::max(out.max_column_floor_z, state[r].z_min);
+      } else {
+        ++out.other_components;
+      }
+    }
+    if (!column[r])
+      for (std::uint32_t vi : soup.triangles[t]) out.max_other_z = std::max(out.max_other_z, soup.vertices[vi].z());
+  }
+
+  // Silhouette candidates (the two triangles of each edge of a closed column solid are
+  // consecutive after the sort).
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const DirectedEdge &e = edges[i], &f = edges[i + 1];
+    if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
+    ++i;
+    const auto& te = soup.triangles[e.triangle];
+    const auto& tf = soup.triangles[f.triangle];
+    SilhouetteEdge s;
+    // Ends by welded id: e traverses v_side → v_side+1; forward means lo → hi.
+    const Vec3& e0 = soup.vertices[te[e.side]];
+    const Vec3& e1 = soup.vertices[te[(e.side + 1) % 3]];
+    s.a = e.forward ? e0 : e1;
+    s.b = e.forward ? e1 : e0;
+    if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
+    if (s.a.z() <= out.max_column_floor_z && s.b.z() <= out.max_column_floor_z) continue;
+    s.c[0] = soup.vertices[te[(e.side + 2) % 3]];
+    s.c[1] = soup.vertices[tf[(f.side + 2) % 3]];
+    // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):
+    // never a silhouette. (Coplanar on the same side is a zero-thickness fin: kept.)
+    if (exact_orientation(s.a, s.b, s.c[0], s.c[1]) == 0 && opposite_sides_in_plane(s.a, s.b, s.c[0], s.c[1])) continue;
+    // det[a − p, b − p, c − p] is the triangle's orientation when (a, b, c) follows its winding
+    // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
+    // winding normal's side; the outward sign turns that into "front-facing".
+    const int out_sign = state[e.component].volume6 > 0 ? 1 : -1;
+    s.facing_sign[0] = std::int8_t(-out_sign * (e.forward ? 1 : -1));
+    s.facing_sign[1] = std::int8_t(-out_sign * (f.forward ? 1 : -1));
+    out.edges.push_back(s);
+  }
+  build_edge_bvh(out);
+  return out;
+}
+
+}  // namespace skyband

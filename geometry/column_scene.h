@@ -1,0 +1,64 @@
+#pragma once
+// Is the scene, seen from a point, a "column scene" — one where the exact horizon method
+// (geometry/horizon_svf.h) is valid?
+//
+// A connected component of the triangle soup (triangles linked through exactly equal vertex
+// positions) is a *column solid* when
+//   1. it is a closed, consistently oriented surface: every edge belongs to exactly two of its
+//      triangles, traversed in opposite directions, and no triangle repeats a vertex;
+//   2. with its orientation made outward (sign of its signed volume), every triangle facing down
+//      (exact xy-orientation predicate) lies in the plane z = z_floor, the component's lowest z.
+// Going up a vertical line, the winding number of such a surface can only rise at z_floor and
+// then never rises again, so the solid meets every vertical line in one segment that starts at
+// its floor: a building extruded from its footprint (flat or pitched roofs, any footprint, with
+// courtyards) is one; an overhang, a bridge or a floating box is not.
+//
+// From a point P outside every column solid with z_P ≥ every column floor and ≥ every vertex of
+// every other triangle, a sky direction is occluded exactly when it lies below the highest scene
+// point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a horizon
+// function of azimuth alone.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "geometry/scene.h"
+#include "geometry/triangle_soup.h"
+
+namespace skyband {
+
+// An edge shared by two faces of a column solid. Seen from a point p outside the solid, face k is
+// front-facing (p on its outer side) when facing_sign[k] · sign(det[a − p, b − p, c[k] − p]) > 0.
+struct SilhouetteEdge {
+  Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
+  Vec3 c[2];       // the third vertex of each face
+  std::int8_t facing_sign[2];
+};
+
+struct EdgeBvhNode {
+  Aabb box;                  // of the edges' ends
+  std::uint32_t first = 0;   // leaf: first edge; inner: left child (right = left + 1)
+  std::uint32_t count = 0;   // leaf: number of edges (> 0); inner: 0
+};
+
+struct ColumnScene {
+  std::size_t column_solids = 0;
+  std::size_t other_components = 0;   // open, non-manifold, overhanging, ... components
+  double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres
+  double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
+
+  // Silhouette candidates: the edges of column solids whose two faces are not coplanar, not
+  // vertical (their ends differ in x or y) and not wholly at or below the highest column floor
+  // (no valid point sees them above its horizon), in the order of `edge_nodes`' leaves.
+  std::vector<SilhouetteEdge> edges;
+  std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
+
+  // The horizon method is valid from height z (metres; the evaluated point, after its surface
+  // offset), provided the point is outside every column solid (checked per point by the method).
+  bool valid_from_height(double z) const { return z >= max_column_floor_z && z >= max_other_z; }
+};
+
+ColumnScene classify_column_scene(const TriangleSoup& soup);
+
+}  // namespace skyband

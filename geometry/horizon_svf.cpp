@@ -1,0 +1,465 @@
+#include "geometry/horizon_svf.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "geometry/exact_sign.h"
+
+namespace skyband {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Azimuth as a "diamond angle" t ∈ [0, 4): 0 at +x, 1 at +y, 2 at −x, 3 at −y; strictly
+// monotone in the angle, and t(−w) = t(w) ± 2 (an arc shorter than π spans less than 2).
+inline double diamond(double x, double y) {
+  if (y >= 0) {
+    if (x >= 0) {
+      const double s = x + y;
+      return s > 0 ? y / s : 0.0;
+    }
+    return 1.0 - x / (y - x);
+  }
+  if (x < 0) return 2.0 - y / (-x - y);
+  return 3.0 + x / (x - y);
+}
+
+// Unit horizontal direction of diamond angle t ∈ [0, 4].
+inline void direction_of(double t, double& wx, double& wy) {
+  double x, y;
+  if (t < 1) x = 1 - t, y = t;
+  else if (t < 2) x = 1 - t, y = 2 - t;
+  else if (t < 3) x = t - 3, y = 2 - t;
+  else x = t - 3, y = t - 4;
+  const double r = 1.0 / std::sqrt(x * x + y * y);
+  wx = x * r;
+  wy = y * r;
+}
+
+constexpr int kBins = 256;
+constexpr double kBinsPerUnit = kBins / 4.0;
+
+// Circle ids: 0 the horizon (tan e = 0), 1 "blocked" (behind a vertical face: no sky).
+constexpr std::uint32_t kHorizon = 0, kBlocked = 1;
+
+struct Piece {
+  double t0;            // start; the piece ends where the next begins (the last at 4)
+  double wx, wy;        // unit horizontal direction at t0
+  std::uint32_t circle;
+};
+
+// Unit directions of the bin edges, t = b/kBinsPerUnit, b = 0 … kBins.
+struct BinDirections {
+  std::array<double, kBins + 1> x, y;
+  BinDirections() {
+    for (int b = 0; b <= kBins; ++b) direction_of(double(b) / kBinsPerUnit, x[b], y[b]);
+  }
+};
+const BinDirections& bin_directions() {
+  static const BinDirections d;
+  return d;
+}
+
+}  // namespace
+
+struct HorizonSvf::Impl {
+  const Scene& scene;
+  const ColumnScene& columns;
+  double offset_m;
+
+  Vec3 p;  // the evaluated point
+  // Great circle k: the plane through p with normal m_k; on it, tan(elevation) along a unit
+  // horizontal direction w is −(m_x w_x + m_y w_y)/m_z (kept as a = −m_x/m_z, b = −m_y/m_z).
+  std::vector<std::array<double, 2>> circle;
+  std::vector<Piece> pieces;
+  std::vector<Piece> scratch;
+  std::array<double, kBins> bin_min{};
+  std::vector<std::uint32_t> stack;
+  std::size_t triangle_tests = 0;
+  bool occluded_any = false;
+
+  Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
+
+  double value(std::uint32_t c, double wx, double wy) const {
+    if (c == kHorizon) return 0.0;
+    if (c == kBlocked) return kInf;
+    return circle[c][0] * wx + circle[c][1] * wy;
+  }
+  double value_at(std::uint32_t c, double t) const {
+    double wx, wy;
+    direction_of(t, wx, wy);
+    return value(c, wx, wy);
+  }
+  double piece_end(std::size_t i) const { return i + 1 < pieces.size() ? pieces[i + 1].t0 : 4.0; }
+
+  // Index of the piece containing t (t ∈ [0, 4)).
+  std::size_t piece_at(double t) const {
+    const auto it = std::upper_bound(pieces.begin(), pieces.end(), t, [](double v, const Piece& q) { return v < q.t0; });
+    return std::size_t(it - pieces.begin()) - 1;
+  }
+
+  // Minimum of the envelope over [lo, hi] ⊂ [0, 4], from its pieces: on each piece's part it is
+  // at one end (arcs at or above the horizon have no interior minimum).
+  double exact_min(double lo, double hi) const {
+    std::size_t i = piece_at(lo);
+    double wx, wy;
+    direction_of(lo, wx, wy);
+    double m = value(pieces[i].circle, wx, wy);
+    for (; i < pieces.size() && pieces[i].t0 < hi && m > 0; ++i) {
+      const std::uint32_t c = pieces[i].circle;
+      if (i + 1 < pieces.size() && pieces[i + 1].t0 < hi) {
+        m = std::min({m, value(c, pieces[i + 1].wx, pieces[i + 1].wy), value(pieces[i + 1].circle, pieces[i + 1].wx, pieces[i + 1].wy)});
+      } else {
+        direction_of(hi, wx, wy);
+        m = std::min(m, value(c, wx, wy));
+      }
+    }
+    return m;
+  }
+
+  // Lower bound of the envelope over [lo, hi] (0 ≤ lo ≤ hi; hi may exceed 4: wraps). Narrow ranges
+  // (a far building) are answered exactly from the pieces; wide ones from the binned minima.
+  double envelope_min(double lo, double hi) const {
+    if ((hi - lo) * kBinsPerUnit <= 2.0) {
+      if (hi <= 4.0) return exact_min(lo, hi);
+      return std::min(exact_min(lo, 4.0), exact_min(0.0, hi - 4.0));
+    }
+    int b0 = int(lo * kBinsPerUnit), b1 = int(hi * kBinsPerUnit);
+    if (b1 - b0 >= kBins) b1 = b0 + kBins - 1;
+    double m = kInf;
+    for (int b = b0; b <= b1; ++b) m = std::min(m, bin_min[b & (kBins - 1)]);
+    return m;
+  }
+
+  // After the envelope rose to at least circle c over [ta, tb]: the new minimum over a bin inside
+  // [ta, tb] is at least the larger of its old minimum and c's minimum over the bin, which is at
+  // one of the bin's ends (along an arc at or above the horizon, tan e = A·cos(φ − φ₀) ≥ 0 has no
+  // interior minimum). Bins only partly inside keep their (still valid) old bound.
+  void raise_bins(std::uint32_t c, double ta, double tb) {
+    const BinDirections& bd = bin_directions();
+    const int b0 = int(std::ceil(ta * kBinsPerUnit)), b1 = int(std::floor(tb * kBinsPerUnit));  // edges inside
+    if (b1 <= b0) return;
+    if (c == kBlocked) {
+      for (int b = b0; b < b1; ++b) bin_min[b] = kInf;
+      return;
+    }
+    double prev = value(c, bd.x[b0], bd.y[b0]);
+    for (int b = b0; b < b1; ++b) {
+      const double next = value(c, bd.x[b + 1], bd.y[b + 1]);
+      bin_min[b] = std::max(bin_min[b], std::min(prev, next));
+      prev = next;
+    }
+  }
+
+  // Raises the envelope to circle c over [ta, tb] ⊂ [0, 4], ta < tb.
+  void insert(std::uint32_t c, double ta, double tb) {
+    std::size_t first = piece_at(ta);
+    scratch.clear();
+    bool changed = false;
+    double u0 = ta, w0x, w0y, wbx, wby;
+    direction_of(ta, w0x, w0y);
+    direction_of(tb, wbx, wby);
+    std::size_t j = first;
+    for (; j < pieces.size() && pieces[j].t0 < tb; ++j) {
+      const std::uint32_t pc = pieces[j].circle;
+      const bool last = j + 1 == pieces.size();
+      const double s1 = last ? 4.0 : pieces[j + 1].t0;
+      if (pieces[j].t0 < u0) scratch.push_back(pieces[j]);  // head outside [ta, tb]
+      double u1, w1x, w1y;
+      if (tb < s1) u1 = tb, w1x = wbx, w1y = wby;
+      else if (last) u1 = 4.0, w1x = 1.0, w1y = 0.0;
+      else u1 = s1, w1x = pieces[j + 1].wx, w1y = pieces[j + 1].wy;
+      const double e0 = value(c, w0x, w0y) - value(pc, w0x, w0y);
+      const double e1 = value(c, w1x, w1y) - value(pc, w1x, w1y);
+      // Both are great-circle arcs over less than π: their difference (linear in the unit
+      // direction) changes sign at most once, where the chord between w0 and w1 crosses zero.
+      if (!(e0 > 0 || e1 > 0)) {
+        scratch.push_back({u0, w0x, w0y, pc});
+      } else if (e0 >= 0 && e1 >= 0) {
+        scratch.push_back({u0, w0x, w0y, c});
+        changed = true;
+      } else {
+        const double l = e0 / (e0 - e1);
+        double cx = (1 - l) * w0x + l * w1x, cy = (1 - l) * w0y + l * w1y;
+        const double r = 1.0 / std::sqrt(cx * cx + cy * cy);
+        cx *= r;
+        cy *= r;
+        const double tc = std::clamp(diamond(cx, cy), u0, u1);
+        scratch.push_back({u0, w0x, w0y, e0 > 0 ? c : pc});
+        scratch.push_back({tc, cx, cy, e0 > 0 ? pc : c});
+        changed = true;
+      }
+      if (u1 < s1) scratch.push_back({u1, w1x, w1y, pc});  // tail outside [ta, tb]
+      u0 = u1;
+      w0x = w1x;
+      w0y = w1y;
+    }
+    if (!changed) return;
+    occluded_any = true;
+    // Merge: drop empty pieces and join neighbours on the same circle, including the pieces just
+    // before and after the replaced range.
+    std::size_t lo = first, hi = j;  // replaced [lo, hi)
+    if (lo > 0) {
+      --lo;
+      scratch.insert(scratch.begin(), pieces[lo]);
+    }
+    if (hi < pieces.size()) scratch.push_back(pieces[hi++]);
+    const double final_end = hi < pieces.size() ? pieces[hi].t0 : 4.0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < scratch.size(); ++k) {
+      const double end = k + 1 < scratch.size() ? scratch[k + 1].t0 : final_end;
+      if (end <= scratch[k].t0) continue;                                  // empty
+      if (n > 0 && scratch[n - 1].circle == scratch[k].circle) continue;  // joins the previous
+      scratch[n++] = scratch[k];
+    }
+    scratch.resize(n);
+    pieces.erase(pieces.begin() + std::ptrdiff_t(lo), pieces.begin() + std::ptrdiff_t(hi));
+    pieces.insert(pieces.begin() + std::ptrdiff_t(lo), scratch.begin(), scratch.end());
+    raise_bins(c, ta, tb);
+  }
+
+  // Inserts arc c over the azimuth range between diamond angles t0 and t1 (the shorter way).
+  void insert_range(std::uint32_t c, double t0, double t1) {
+    const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+    if (hi - lo < 2) {
+      if (lo < hi) insert(c, lo, hi);
+    } else if (hi - lo > 2) {
+      insert(c, hi, 4.0);
+      if (lo > 0) insert(c, 0.0, lo);
+    }
+    // exactly 2 apart: the arc passes over the point (a vertical great circle); not an occluder
+    // arc of a triangle the method accepts.
+  }
+
+  std::uint32_t add_circle(const Vec3& m) {
+    circle.push_back({-m.x() / m.z(), -m.y() / m.z()});
+    return std::uint32_t(circle.size() - 1);
+  }
+
+  // Inserts circle c over the range from t0 counter-clockwise to t1 (exactly half a turn: the
+  // face's far side), as two quarter-turn-or-less parts, so each is shorter than π.
+  void insert_half_turn(std::uint32_t c, double t0, double tmid, double t1) {
+    const double cuts[3] = {t0, tmid, t1};
+    for (int k = 0; k < 2; ++k) {
+      const double a = cuts[k], b = cuts[k + 1];
+      if (a < b) insert(c, a, b);
+      else {
+        insert(c, a, 4.0);
+        if (b > 0) insert(c, 0.0, b);
+      }
+    }
+  }
+
+  // The part of edge (a, b) (offsets from p) above the horizontal of p, as an arc.
+  void insert_edge(const Vec3& a, const Vec3& b, double ta, double tb) {
+    const bool a_up = a.z() > 0, b_up = b.z() > 0;
+    if (!a_up && !b_up) return;
+    Vec3 lo = a, hi = b;
+    double tlo = ta, thi = tb;
+    if (!a_up || !b_up) {
+      // Clip at z = 0: hi the end above, lo the crossing of p's horizontal plane.
+      if (!b_up) std::swap(lo, hi), std::swap(tlo, thi);
+      const double l = hi.z() / (hi.z() - lo.z());
+      lo = hi + l * (lo - hi);
+      lo.z() = 0;
+      tlo = diamond(lo.x(), lo.y());
+    }
+    const Vec3 m = lo.cross(hi);
+    if (!(m.z() != 0) || tlo == thi) return;  // radial or vertical: covers no azimuth range
+    if (!std::isfinite(m.x() / m.z()) || !std::isfinite(m.y() / m.z())) return;  // a sliver of ~0 azimuth
+    insert_range(add_circle(m), tlo, thi);
+  }
+
+  // Is p under (or on) a triangle reaching above it — inside a column solid or on its surface?
+  // Exact; only triangles whose xy box holds p's xy are tested (a point query on the scene BVH).
+  bool under_a_triangle() {
+    const auto& nodes = scene.bvh_nodes();
+    const auto& order = scene.bvh_triangle_order();
+    const auto& v = scene.soup().vertices;
+    const auto holds = [&](const Aabb& b) {
+      return b.hi.z() > p.z() && b.lo.x() <= p.x() && p.x() <= b.hi.x() && b.lo.y() <= p.y() && p.y() <= b.hi.y();
+    };
+    if (nodes.empty() || !holds(nodes[0].box)) return false;
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const BvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node.count == 0) {
+        for (std::uint32_t child : {node.first, node.first + 1})
+          if (holds(nodes[child].box)) stack.push_back(child);
+        continue;
+      }
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+        const auto& tri = scene.soup().triangles[order[k]];
+        const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
+        if (A.z() <= p.z() && B.z() <= p.z() && C.z() <= p.z()) continue;
+        if (std::min({A.x(), B.x(), C.x()}) > p.x() || std::max({A.x(), B.x(), C.x()}) < p.x() ||
+            std::min({A.y(), B.y(), C.y()}) > p.y() || std::max({A.y(), B.y(), C.y()}) < p.y())
+          continue;
+        const int s = exact_orient2d_sign(A, B, C);
+        const int o1 = exact_orient2d_sign(A, B, p), o2 = exact_orient2d_sign(B, C, p), o3 = exact_orient2d_sign(C, A, p);
+        const bool inside = s != 0 ? (o1 * s >= 0 && o2 * s >= 0 && o3 * s >= 0) : (o1 == 0 && o2 == 0 && o3 == 0);
+        if (!inside) continue;
+        if (s == 0) return true;  // a vertical triangle through p's vertical
+        // det[A − p, B − p, C − p] has the sign of n·(A − p), n = (B − A) × (C − A), n_z ∝ s:
+        // same signs — the triangle is above p there (p under it, or on it). A triangle below p
+        // at p's xy (p on a roof) is fine: its highest point in each azimuth is on an edge.
+        if (exact_orientation(A, B, C, p) * s >= 0) return true;
+      }
+    }
+    return false;
+  }
+
+  // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an
+  // azimuth (docs/geometry.md, "Exact horizon"): an edge whose two faces are both strictly
+  // front-facing, or both strictly back-facing, from p is skipped.
+  void add_edge(const SilhouetteEdge& e) {
+    if (e.a.z() <= p.z() && e.b.z() <= p.z()) return;  // at or below p's horizontal plane
+    ++triangle_tests;
+    const int f0 = e.facing_sign[0] * exact_orientation(e.a, e.b, e.c[0], p);
+    const int f1 = e.facing_sign[1] * exact_orientation(e.a, e.b, e.c[1], p);
+    if (f0 == f1 && f0 != 0) return;
+    const Vec3 a = e.a - p, b = e.b - p;
+    const double dx = std::max({std::min(a.x(), b.x()), -std::max(a.x(), b.x()), 0.0});
+    const double dy = std::max({std::min(a.y(), b.y()), -std::max(a.y(), b.y()), 0.0});
+    const double ta = diamond(a.x(), a.y()), tb = diamond(b.x(), b.y());
+    if (dx > 0 || dy > 0) {
+      // Cull: the edge's elevation is at most atan(max z / distance to its xy box).
+      const double bound = std::max(a.z(), b.z()) / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
+      double lo = std::min(ta, tb), hi = std::max(ta, tb);
+      if (hi - lo >= 2) {  // spans t = 0 (less than π: p is outside its xy box)
+        lo = std::max(ta, tb);
+        hi = std::min(ta, tb) + 4;
+      }
+      if (bound <= envelope_min(lo, hi)) return;
+    }
+    insert_edge(a, b, ta, tb);
+  }
+
+  // Conservative: true when every triangle under the node is hidden or below the horizon.
+  bool node_hidden(const Aabb& box) const {
+    if (box.hi.z() <= p.z()) return true;
+    const double x0 = box.lo.x() - p.x(), x1 = box.hi.x() - p.x();
+    const double y0 = box.lo.y() - p.y(), y1 = box.hi.y() - p.y();
+    const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
+    if (dx == 0 && dy == 0) return false;
+    const double bound = (box.hi.z() - p.z()) / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
+    // Azimuth range of the box seen from outside it (less than π).
+    const double tv[4] = {diamond(x0, y0), diamond(x1, y0), diamond(x0, y1), diamond(x1, y1)};
+    double lo = std::min({tv[0], tv[1], tv[2], tv[3]}), hi = std::max({tv[0], tv[1], tv[2], tv[3]});
+    if (hi - lo >= 2) {
+      double start = 4, end = 0;
+      for (double v : tv) {
+        if (v >= 2) start = std::min(start, v);
+        else end = std::max(end, v);
+      }
+      lo = start;
+      hi = end + 4;
+    }
+    return bound <= envelope_min(lo, hi);
+  }
+
+  static double node_distance2(const Aabb& box, const Vec3& p) {
+    const double dx = std::max({box.lo.x() - p.x(), p.x() - box.hi.x(), 0.0});
+    const double dy = std::max({box.lo.y() - p.y(), p.y() - box.hi.y(), 0.0});
+    return dx * dx + dy * dy;
+  }
+
+  bool compute(const QueryPoint& q, SkyFactors& out) {
+    const Vec3& n = q.normal;
+    triangle_tests = 0;
+    if (!(n.z() >= 0)) return false;
+    p = q.position + offset_m * n;
+    if (!columns.valid_from_height(p.z())) return false;
+
+    circle.assign(2, {0.0, 0.0});
+    pieces.assign(1, Piece{0.0, 1.0, 0.0, kHorizon});
+    bin_min.fill(0.0);
+    occluded_any = false;
+    const bool horizontal = n.x() == 0 && n.y() == 0;
+    if (!horizontal) {
+      // The face's own plane bounds its sky on the far side of the normal: a great circle above
+      // the horizon there (n_z > 0), or the whole far half (a vertical face: no sky behind it).
+      const double tl = diamond(-n.y(), n.x()), tm = diamond(-n.x(), -n.y()), tr = diamond(n.y(), -n.x());
+      insert_half_turn(n.z() > 0 ? add_circle(n) : kBlocked, tl, tm, tr);
+      occluded_any = false;
+    }
+
+    if (under_a_triangle()) return false;
+    const auto& nodes = columns.edge_nodes;
+    if (!nodes.empty()) {
+      stack.clear();
+      stack.push_back(0);
+      while (!stack.empty()) {
+        const EdgeBvhNode& node = nodes[stack.back()];
+        stack.pop_back();
+        if (node_hidden(node.box)) continue;
+        if (node.count > 0) {
+          for (std::uint32_t k = node.first; k < node.first + node.count; ++k) add_edge(columns.edges[k]);
+          continue;
+        }
+        const std::uint32_t l = node.first, r = node.first + 1;
+        const bool left_first = node_distance2(nodes[l].box, p) <= node_distance2(nodes[r].box, p);
+        stack.push_back(left_first ? r : l);  // far child below the near one
+        stack.push_back(left_first ? l : r);
+      }
+    }
+
+    if (!occluded_any) {
+      // The open sky in front of the face in closed form: SVF (1 + sin β)/2, exposure 1/2 + β/π.
+      const double beta = std::asin(std::clamp(n.z(), -1.0, 1.0));
+      out.svf = horizontal ? 1.0 : 0.5 * (1 + n.z());
+      out.sky_exposure = horizontal ? 1.0 : 0.5 + beta / kPi;
+      return true;
+    }
+    integrate(n, out);
+    return true;
+  }
+
+  // Lambert's formula over the visible region, as a fan of spherical triangles (zenith, a, b),
+  // one per piece (split at quarter turns, so each spans at most π/2).
+  void integrate(const Vec3& n, SkyFactors& out) const {
+    const Vec3 Z(0, 0, 1);
+    double phi = 0, omega = 0;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const std::uint32_t c = pieces[i].circle;
+      if (c == kBlocked) continue;
+      double u0 = pieces[i].t0;
+      const double end = piece_end(i);
+      while (u0 < end) {
+        const double u1 = std::min(end, std::floor(u0) + 1.0);
+        double ax, ay, bx, by;
+        direction_of(u0, ax, ay);
+        direction_of(u1, bx, by);
+        const Vec3 a = Vec3(ax, ay, value(c, ax, ay)).normalized();
+        const Vec3 b = Vec3(bx, by, value(c, bx, by)).normalized();
+        // ½ Σ Θ_e n·ĝ_e over the arcs Z→a, a→b, b→Z (counter-clockwise seen from above).
+        const Vec3 za = Z.cross(a), ab = a.cross(b), bz = b.cross(Z);
+        const double nza = za.norm(), nab = ab.norm(), nbz = bz.norm();
+        if (nza > 0) phi += std::atan2(nza, Z.dot(a)) * n.dot(za) / nza;
+        if (nab > 0) phi += std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
+        if (nbz > 0) phi += std::atan2(nbz, b.dot(Z)) * n.dot(bz) / nbz;
+        // Solid angle of the triangle (Van Oosterom & Strackee 1983).
+        omega += 2 * std::atan2(Z.dot(ab), 1 + Z.dot(a) + a.dot(b) + b.dot(Z));
+        u0 = u1;
+      }
+    }
+    out.svf = std::clamp(0.5 * phi / kPi, 0.0, 1.0);
+    out.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);
+  }
+};
+
+HorizonSvf::HorizonSvf(const Scene& scene, const ColumnScene& columns, double surface_offset_m)
+    : impl_(std::make_unique<Impl>(scene, columns, surface_offset_m)) {}
+HorizonSvf::~HorizonSvf() = default;
+bool HorizonSvf::compute(const QueryPoint& q, SkyFactors& out) { return impl_->compute(q, out); }
+std::size_t HorizonSvf::last_triangle_tests() const { return impl_->triangle_tests; }
+std::size_t HorizonSvf::last_envelope_pieces() const { return impl_->pieces.size(); }
+
+}  // namespace skyband

@@ -1,0 +1,34 @@
+#pragma once
+// Sky view factor and sky exposure for many points, by the fastest exact method valid at each:
+// the exact horizon (geometry/horizon_svf.h) where the scene is a column scene from the point,
+// the band method (geometry/band_visibility.h, with its options) elsewhere.
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "geometry/band_visibility.h"
+#include "geometry/scene.h"
+
+namespace skyband {
+
+enum class SkyFactorsMethod {
+  automatic,  // exact horizon where valid, bands elsewhere
+  bands,      // the band method everywhere (identical to compute_sky_factors)
+};
+
+struct SkyFactorsRun {
+  std::vector<SkyFactors> factors;  // in input order
+  std::size_t by_horizon = 0;       // points computed by the exact horizon
+  std::size_t by_bands = 0;         // points computed by the band method
+  std::size_t column_solids = 0;    // the scene's classification (geometry/column_scene.h)
+  std::size_t other_components = 0;
+};
+
+// Deterministic: each point is computed alone, so the result does not depend on `threads`
+// (0 = all cores). `progress(done, total)` is called from one thread.
+SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                                  SkyFactorsMethod method, int threads = 0,
+                                  const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace skyband

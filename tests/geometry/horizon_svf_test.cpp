@@ -1,0 +1,285 @@
+#define BOOST_TEST_MODULE horizon_svf
+#include <boost/test/unit_test.hpp>
+
+// The exact horizon method (geometry/horizon_svf.h) and its validity test (column_scene.h)
+// against the exact, independent oracles of tests/geometry/support/lambert_oracle.h (Lambert's
+// contour formula over exact 2D unions on the occluders' faces), the closed forms of
+// reference-notes §5, and the band method where the horizon method must refuse.
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "geometry/band_visibility.h"
+#include "geometry/column_scene.h"
+#include "geometry/horizon_svf.h"
+#include "geometry/sky_factors.h"
+#include "geometry/sky_integral.h"
+#include "geometry/support/lambert_oracle.h"
+#include "geometry/support/scene_generators.h"
+
+using namespace skyband;
+using namespace skyband::oracle;
+
+namespace {
+
+// The method is exact; its results carry only rounding (arcs, Lambert's sum over ~10² pieces)
+// and the oracle's own rounding (< 1e-9, lambert_oracle_test).
+constexpr double kExact = 1e-9;
+
+bool inside_footprint(const OrientedBox& b, const Vec3& p, double margin) {
+  const double c = std::cos(-b.yaw_rad), s = std::sin(-b.yaw_rad);
+  const Vec3 d = p - b.centre;
+  return std::abs(c * d.x() - s * d.y()) <= 0.5 * b.size.x() + margin &&
+         std::abs(s * d.x() + c * d.y()) <= 0.5 * b.size.y() + margin;
+}
+
+Vec3 unit_normal(double tilt, double az) { return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(classification_of_components) {
+  TriangleSoup box;
+  append_box(box, Vec3(0, 0, 0), Vec3(2, 3, 5));
+  ColumnScene c = classify_column_scene(box);
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.other_components == 0u);
+  BOOST_TEST(c.max_column_floor_z == 0.0);
+  BOOST_TEST(c.valid_from_height(0.0));
+  BOOST_TEST(!c.valid_from_height(-1e-9));
+
+  // Inward-wound: still a column solid (orientation from the signed volume).
+  TriangleSoup inward = box;
+  for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+  BOOST_TEST(classify_column_scene(inward).column_solids == 1u);
+
+  // A floating box: valid only from its floor up.
+  TriangleSoup floating;
+  append_box(floating, Vec3(0, 0, 4), Vec3(1, 1, 6));
+  c = classify_column_scene(floating);
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(!c.valid_from_height(3.9));
+  BOOST_TEST(c.valid_from_height(4.0));
+
+  // An open box (roof removed): not a column solid; valid only above its highest vertex.
+  TriangleSoup open = box;
+  open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);
+  TriangleSoup open_only = open;
+  c = classify_column_scene(open_only);
+  BOOST_TEST(c.column_solids + c.other_components == 1u);
+  BOOST_TEST(c.column_solids == 0u);
+  BOOST_TEST(c.max_other_z == 5.0);
+
+  // An overhang: a T-shaped solid (a slab on a post) faces down above its floor.
+  TriangleSoup t_shape;
+  append_box(t_shape, Vec3(0, 0, 0), Vec3(1, 1, 3));
+  append_box(t_shape, Vec3(-2, -2, 3), Vec3(3, 3, 4));  // shares no vertex with the post: 2 components
+  c = classify_column_scene(t_shape);
+  BOOST_TEST(c.column_solids == 2u);        // each box alone is a column solid...
+  BOOST_TEST(!c.valid_from_height(0.0));    // ...but the slab floats: not valid below z = 3
+}
+
+BOOST_AUTO_TEST_CASE(open_sky_closed_forms) {
+  TriangleSoup ground;  // a ground sheet at z = 0 (an open component, wholly below the points)
+  ground.vertices = {Vec3(-50, -50, 0), Vec3(50, -50, 0), Vec3(50, 50, 0), Vec3(-50, 50, 0)};
+  ground.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const Scene scene(ground);
+  const ColumnScene columns = classify_column_scene(scene.soup());
+  HorizonSvf h(scene, columns, 1e-6);
+  SkyFactors f;
+  for (double tilt : {0.0, 0.3, 1.0, kPi / 2}) {
+    BOOST_TEST_REQUIRE(h.compute(QueryPoint{Vec3(1, 2, 0), unit_normal(tilt, 0.7)}, f));
+    // SVF (1 + cos tilt)/2 and exposure 1/2 + β/π, β = π/2 − tilt (reference-notes §5).
+    BOOST_TEST(std::abs(f.svf - 0.5 * (1 + std::cos(tilt))) < 1e-15);
+    BOOST_TEST(std::abs(f.sky_exposure - (0.5 + (kPi / 2 - tilt) / kPi)) < 1e-15);
+  }
+  BOOST_TEST(h.compute(QueryPoint{Vec3(1, 2, 0), Vec3(0, 0, 1)}, f));
+  BOOST_TEST(f.svf == 1.0);
+  // Facing down: refused (the band method handles it).
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(1, 2, 1), unit_normal(2.0, 0.1)}, f));
+}
+
+BOOST_AUTO_TEST_CASE(single_wall_and_canyon_closed_forms) {
+  // A wall of height H at distance D from a ground point, infinitely long in the limit: the
+  // finite wall's exact SVF is Lambert's perpendicular-rectangle form factor (reference-notes §5).
+  TriangleSoup wall;
+  append_box(wall, Vec3(-500, 3, 0), Vec3(500, 4, 7));
+  const Scene scene(wall);
+  const ColumnScene columns = classify_column_scene(scene.soup());
+  HorizonSvf h(scene, columns, 0.0);
+  SkyFactors f;
+  BOOST_TEST_REQUIRE(h.compute(QueryPoint{Vec3(0, 0, 0), Vec3(0, 0, 1)}, f));
+  // Hidden: the wall's face at y = 3 (a 1000 × 7 rectangle, perpendicular to the ground, the
+  // point at distance 3 from its plane, centred) — twice the half-rectangle factor; the wall's
+  // top is hidden behind that face.
+  const double hidden = 2 * perpendicular_rectangle_form_factor(500, 7, 3);
+  BOOST_TEST(std::abs(f.svf - (1 - hidden)) < kExact, "svf " << f.svf << " expected " << 1 - hidden);
+
+  // Street canyon W = 10, H = 20, walls 400 km long (their ends change the SVF by ~1e-13 and
+  // the exposure by ~1e-9 here): floor and wall points (reference-notes §5).
+  const auto boxes = gen::street_canyon(10, 20, 4e5);
+  const TriangleSoup soup = gen::boxes_to_soup(boxes);
+  const Scene canyon(soup);
+  const ColumnScene cc = classify_column_scene(canyon.soup());
+  HorizonSvf hc(canyon, cc, 1e-6);
+  // The sky exposure of an infinite canyon in closed form: the sky hidden by an infinitely long
+  // horizontal edge at height h and horizontal distance d is the lune between the horizon and the
+  // great circle through the edge, of solid angle 2·atan(h/d) (twice its dihedral angle).
+  BOOST_TEST_REQUIRE(hc.compute(QueryPoint{Vec3(0, 3, 0), Vec3(0, 0, 1)}, f));
+  // (The point is evaluated 1 µm in front of its face: walls 1 µm lower, or 1 µm farther.)
+  const double wall_h = 20 - 1e-6;
+  BOOST_TEST(std::abs(f.svf - canyon_floor_svf(3, 10, wall_h)) < 1e-9);
+  BOOST_TEST(std::abs(f.sky_exposure - (2 * kPi - 2 * std::atan(wall_h / 3.0) - 2 * std::atan(wall_h / 7.0)) / (2 * kPi)) < 1e-8);
+  BOOST_TEST_REQUIRE(hc.compute(QueryPoint{Vec3(0, 0, 12), Vec3(0, 1, 0)}, f));
+  const double w = 10 - 1e-6;
+  BOOST_TEST(std::abs(f.svf - canyon_wall_svf(12, w, 20)) < 1e-9);
+  BOOST_TEST(std::abs(f.sky_exposure - (kPi - 2 * std::atan(8 / w)) / (2 * kPi)) < 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(integration_reproduces_the_open_sky) {
+  // A 1 cm box 1 km away (hiding ~1e-10 of the sky) makes the method integrate the whole fan
+  // instead of returning the closed form: the fan must reproduce the closed forms.
+  TriangleSoup speck;
+  append_box(speck, Vec3(1000, 0, 0), Vec3(1000.01, 0.01, 0.01));
+  const Scene scene(speck);
+  const ColumnScene columns = classify_column_scene(scene.soup());
+  HorizonSvf h(scene, columns, 0.0);
+  for (double tilt : {0.0, 0.3, 1.0, kPi / 2})
+    for (double az : {0.0, 0.7, 2.0, 3.5, 5.0}) {
+      SkyFactors f;
+      BOOST_TEST_REQUIRE(h.compute(QueryPoint{Vec3(0, 0, 0.005), unit_normal(tilt, az)}, f));
+      BOOST_TEST(std::abs(f.svf - 0.5 * (1 + std::cos(tilt))) < 1e-9, "tilt " << tilt << " az " << az << " svf " << f.svf);
+      BOOST_TEST(std::abs(f.sky_exposure - (0.5 + (kPi / 2 - tilt) / kPi)) < 1e-9,
+                 "tilt " << tilt << " az " << az << " exposure " << f.sky_exposure);
+    }
+}
+
+BOOST_AUTO_TEST_CASE(random_box_scenes_match_the_union_oracle) {
+  // Overlapping, rotated boxes on the ground; ground points, tilted points above the ground, and
+  // facade points on and off the walls. The union oracle is exact.
+  gen::RandomBoxParams params;
+  params.count = 8;
+  params.extent_m = 12;
+  double worst = 0;
+  std::size_t n = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    const auto boxes = gen::random_boxes(params, 300 + seed);
+    const TriangleSoup soup = gen::boxes_to_soup(boxes);
+    const Scene scene(soup);
+    const ColumnScene columns = classify_column_scene(scene.soup());
+    BOOST_TEST(columns.column_solids == boxes.size());
+    HorizonSvf h(scene, columns, 1e-6);
+    gen::Rng rng(900 + seed);
+    std::vector<QueryPoint> pts;
+    while (pts.size() < 8) {
+      const bool ground = pts.size() < 4;
+      QueryPoint q{Vec3(rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 6)), Vec3(0, 0, 1)};
+      if (std::any_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
+        continue;
+      if (!ground) q.normal = unit_normal(rng.uniform(0.05, kPi / 2), rng.uniform(0, 2 * kPi));
+      pts.push_back(q);
+    }
+    for (double off : {0.0, 0.05})
+      for (const QueryPoint& q : gen::facade_points(boxes, 5, off, 1000 + seed))
+        if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) {
+              return inside_footprint(b, q.position, -1e-9) && q.position.z() < b.size.z();
+            }))
+          pts.push_back(q);
+    for (const QueryPoint& q : pts) {
+      SkyFactors f;
+      if (!h.compute(q, f)) continue;  // facade points inside an intersecting box
+      const Vec3 p = q.position + 1e-6 * q.normal;
+      const double exact = svf_union_oracle(p, q.normal, soup);
+      worst = std::max(worst, std::abs(f.svf - exact));
+      ++n;
+      BOOST_TEST(std::abs(f.svf - exact) < kExact,
+                 "seed " << seed << " p " << q.position.transpose() << " n " << q.normal.transpose() << " horizon " << f.svf
+                         << " exact " << exact);
+    }
+  }
+  BOOST_TEST_MESSAGE("random box scenes: max |horizon − oracle| " << worst << " over " << n << " points");
+  BOOST_TEST(n >= 100u);
+}
+
+BOOST_AUTO_TEST_CASE(agrees_with_the_band_method_at_many_bands) {
+  // The band method is exact in α and converges in δ. Its SVF at 4096 bands is a reference to
+  // ~1e-5; its exposure converges more slowly (the bands against the face's own plane are
+  // ~√(2/N) rad wide in δ and sampled at their weight median), to ~1e-3 here.
+  gen::RandomBoxParams params;
+  params.count = 6;
+  params.extent_m = 10;
+  const auto boxes = gen::random_boxes(params, 77);
+  const Scene scene(gen::boxes_to_soup(boxes));
+  const ColumnScene columns = classify_column_scene(scene.soup());
+  HorizonSvf h(scene, columns, 1e-6);
+  VisibilityOptions fine;
+  fine.bands = 4096;
+  fine.tolerance = 0;
+  fine.axis_tail_rad = 0;
+  std::vector<QueryPoint> pts;
+  gen::Rng rng(5);
+  while (pts.size() < 12) {
+    QueryPoint q{Vec3(rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)), unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28))};
+    if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
+      pts.push_back(q);
+  }
+  const VisibilityCache cache = compute_visibility(scene, pts, fine, 1);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    SkyFactors f;
+    BOOST_TEST_REQUIRE(h.compute(pts[i], f));
+    BOOST_TEST(std::abs(f.sky_exposure - sky_exposure(cache.view(i))) < 1e-3);
+    BOOST_TEST(std::abs(f.svf - sky_view_factor(cache.view(i))) < 2e-5);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(refuses_points_under_or_inside_solids_and_the_driver_falls_back) {
+  TriangleSoup soup;
+  append_box(soup, Vec3(0, 0, 0), Vec3(4, 4, 4));
+  append_box(soup, Vec3(10, 0, 3), Vec3(12, 2, 5));  // floats 3 m above the ground
+  const Scene scene(soup);
+  const ColumnScene columns = classify_column_scene(scene.soup());
+  HorizonSvf h(scene, columns, 1e-6);
+  SkyFactors f;
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 2), Vec3(0, 0, 1)}, f));   // below the floating floor
+  BOOST_TEST(h.compute(QueryPoint{Vec3(2, 2, 4), Vec3(0, 0, 1)}, f));    // on the roof: valid
+  BOOST_TEST(f.svf < 1.0);                                               // the floating box is higher
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, f)); // inside the first box
+
+  // The driver: inside → 0 by the band method; on the roof and beside → the horizon.
+  const std::vector<QueryPoint> pts = {{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, {Vec3(2, 2, 4), Vec3(0, 0, 1)}, {Vec3(6, 6, 4), Vec3(0, 0, 1)}};
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(run.by_bands == 1u);
+  BOOST_TEST(run.by_horizon == 2u);
+  BOOST_TEST(run.factors[0].svf == 0.0);
+  const SkyFactorsRun bands = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::bands, 1);
+  for (std::size_t i = 1; i < pts.size(); ++i) BOOST_TEST(std::abs(run.factors[i].svf - bands.factors[i].svf) < 1e-3);
+}
+
+BOOST_AUTO_TEST_CASE(city_points_threads_and_projected_coordinates) {
+  gen::CityParams cp;
+  cp.blocks = 4;
+  const gen::City city = gen::make_city(cp);
+  std::vector<QueryPoint> pts = gen::street_points(city, 40, 3);
+  for (const QueryPoint& q : gen::facade_points(city.buildings, 40, 0.0, 4)) pts.push_back(q);
+  const Scene scene(city.soup);
+  const SkyFactorsRun one = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  const SkyFactorsRun two = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 2);
+  BOOST_TEST(one.by_horizon == pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) BOOST_TEST(one.factors[i].svf == two.factors[i].svf);
+  // Against the oracle on a few points (exact union of the city's front faces).
+  for (std::size_t i = 0; i < pts.size(); i += 10) {
+    const SvfBounds b = svf_union_oracle_culled(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, city.soup, 1e9, 1e-9, true, 1e9);
+    BOOST_TEST(std::abs(one.factors[i].svf - b.estimate()) < kExact, "point " << i << " horizon " << one.factors[i].svf << " oracle " << b.estimate());
+  }
+  // Projected coordinates (x ≈ 4·10⁵, y ≈ 6·10⁶ m): the same answers to ~1e-9.
+  TriangleSoup moved = city.soup;
+  std::vector<QueryPoint> moved_pts = pts;
+  gen::translate(moved, gen::kProjectedOffset);
+  gen::translate(moved_pts, gen::kProjectedOffset);
+  const SkyFactorsRun there = compute_sky_factors(Scene(moved), moved_pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(there.by_horizon == pts.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) worst = std::max(worst, std::abs(there.factors[i].svf - one.factors[i].svf));
+  BOOST_TEST_MESSAGE("projected coordinates: max |ΔSVF| " << worst);
+  BOOST_TEST(worst < 1e-9);
+}
