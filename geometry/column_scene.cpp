@@ -190,6 +190,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       if (column[r]) {
         ++out.column_solids;
         out.max_column_floor_z = std::max(out.max_column_floor_z, state[r].z_min);
+        out.min_column_floor_z = std::min(out.min_column_floor_z, state[r].z_min);
       } else {
         ++out.other_components;
       }
@@ -213,7 +214,8 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     s.a = e.forward ? e0 : e1;
     s.b = e.forward ? e1 : e0;
     if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
-    if (s.a.z() <= out.max_column_floor_z && s.b.z() <= out.max_column_floor_z) continue;
+    if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
+    s.floor_z = state[e.component].z_min;
     s.c[0] = soup.vertices[te[(e.side + 2) % 3]];
     s.c[1] = soup.vertices[tf[(f.side + 2) % 3]];
     // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):

@@ -13,8 +13,8 @@
 // its floor: a building extruded from its footprint (flat or pitched roofs, any footprint, with
 // courtyards) is one; an overhang, a bridge or a floating box is not.
 //
-// From a point P outside every column solid with z_P ≥ every column floor and ≥ every vertex of
-// every other triangle, a sky direction is occluded exactly when it lies below the highest scene
+// From a point P outside every column solid with z_P ≥ the floor of every column solid it sees and
+// ≥ every vertex of every other triangle, a sky direction is occluded exactly when it lies below the highest scene
 // point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a horizon
 // function of azimuth alone.
 #include <array>
@@ -33,6 +33,7 @@ namespace skyband {
 struct SilhouetteEdge {
   Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
   Vec3 c[2];       // the third vertex of each face
+  double floor_z;  // metres, the floor of its column solid
   std::int8_t facing_sign[2];
 };
 
@@ -45,18 +46,22 @@ struct EdgeBvhNode {
 struct ColumnScene {
   std::size_t column_solids = 0;
   std::size_t other_components = 0;   // open, non-manifold, overhanging, ... components
+  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres
   double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres
   double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
 
   // Silhouette candidates: the edges of column solids whose two faces are not coplanar, not
-  // vertical (their ends differ in x or y) and not wholly at or below the highest column floor
-  // (no valid point sees them above its horizon), in the order of `edge_nodes`' leaves.
+  // vertical (their ends differ in x or y) and not wholly at or below the lowest column floor
+  // (a point that high sees them at or below its horizon; a point lower than every floor sees
+  // the solids' upper edges, and the method declines it), in the order of `edge_nodes`' leaves.
   std::vector<SilhouetteEdge> edges;
   std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
 
-  // The horizon method is valid from height z (metres; the evaluated point, after its surface
-  // offset), provided the point is outside every column solid (checked per point by the method).
-  bool valid_from_height(double z) const { return z >= max_column_floor_z && z >= max_other_z; }
+  // The other components must lie at or below the point's horizontal plane: the method may be
+  // valid from height z (metres; the evaluated point, after its surface offset). The rest is
+  // checked per point by the method: the point must be outside every column solid, and at or
+  // above the floor of every column solid it does not find wholly hidden.
+  bool valid_from_height(double z) const { return z >= max_other_z; }
 };
 
 ColumnScene classify_column_scene(const TriangleSoup& soup);

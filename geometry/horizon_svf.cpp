@@ -319,12 +319,16 @@ struct HorizonSvf::Impl {
   // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an
   // azimuth (docs/geometry.md, "Exact horizon"): an edge whose two faces are both strictly
   // front-facing, or both strictly back-facing, from p is skipped.
-  void add_edge(const SilhouetteEdge& e) {
-    if (e.a.z() <= p.z() && e.b.z() <= p.z()) return;  // at or below p's horizontal plane
+  // Returns false when the edge's solid floats above p (its floor is higher): then the sky below
+  // the solid may be visible and the method is not valid (decided for every edge not culled, so
+  // a floating solid wholly hidden behind grounded ones does not matter).
+  bool add_edge(const SilhouetteEdge& e) {
+    if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
+    if (e.floor_z > p.z()) return false;
     ++triangle_tests;
     const int f0 = e.facing_sign[0] * exact_orientation(e.a, e.b, e.c[0], p);
     const int f1 = e.facing_sign[1] * exact_orientation(e.a, e.b, e.c[1], p);
-    if (f0 == f1 && f0 != 0) return;
+    if (f0 == f1 && f0 != 0) return true;
     const Vec3 a = e.a - p, b = e.b - p;
     const double dx = std::max({std::min(a.x(), b.x()), -std::max(a.x(), b.x()), 0.0});
     const double dy = std::max({std::min(a.y(), b.y()), -std::max(a.y(), b.y()), 0.0});
@@ -337,9 +341,10 @@ struct HorizonSvf::Impl {
         lo = std::max(ta, tb);
         hi = std::min(ta, tb) + 4;
       }
-      if (bound <= envelope_min(lo, hi)) return;
+      if (bound <= envelope_min(lo, hi)) return true;
     }
     insert_edge(a, b, ta, tb);
+    return true;
   }
 
   // Conservative: true when every triangle under the node is hidden or below the horizon.
@@ -401,7 +406,8 @@ struct HorizonSvf::Impl {
         stack.pop_back();
         if (node_hidden(node.box)) continue;
         if (node.count > 0) {
-          for (std::uint32_t k = node.first; k < node.first + node.count; ++k) add_edge(columns.edges[k]);
+          for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+            if (!add_edge(columns.edges[k])) return false;
           continue;
         }
         const std::uint32_t l = node.first, r = node.first + 1;

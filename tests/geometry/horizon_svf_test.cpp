@@ -45,21 +45,24 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
   BOOST_TEST(c.column_solids == 1u);
   BOOST_TEST(c.other_components == 0u);
   BOOST_TEST(c.max_column_floor_z == 0.0);
-  BOOST_TEST(c.valid_from_height(0.0));
-  BOOST_TEST(!c.valid_from_height(-1e-9));
+  BOOST_TEST(c.valid_from_height(-10.0));  // (column floors are checked per point by the method)
+  // Silhouette candidates: the 4 roof edges (vertical edges, the floor's edges at the lowest floor
+  // and the faces' inner diagonals are not).
+  BOOST_TEST(c.edges.size() == 4u);
 
   // Inward-wound: still a column solid (orientation from the signed volume).
   TriangleSoup inward = box;
   for (auto& t : inward.triangles) std::swap(t[1], t[2]);
   BOOST_TEST(classify_column_scene(inward).column_solids == 1u);
 
-  // A floating box: valid only from its floor up.
-  TriangleSoup floating;
-  append_box(floating, Vec3(0, 0, 4), Vec3(1, 1, 6));
-  c = classify_column_scene(floating);
-  BOOST_TEST(c.column_solids == 1u);
-  BOOST_TEST(!c.valid_from_height(3.9));
-  BOOST_TEST(c.valid_from_height(4.0));
+  // A box floating above a grounded one: both column solids, floors 0 and 4.
+  TriangleSoup two = box;
+  append_box(two, Vec3(10, 0, 4), Vec3(11, 1, 6));
+  c = classify_column_scene(two);
+  BOOST_TEST(c.column_solids == 2u);
+  BOOST_TEST(c.min_column_floor_z == 0.0);
+  BOOST_TEST(c.max_column_floor_z == 4.0);
+  BOOST_TEST(c.edges.size() == 12u);  // 4 roof edges each, and the floating floor's 4
 
   // An open box (roof removed): not a column solid; valid only above its highest vertex.
   TriangleSoup open = box;
@@ -75,8 +78,8 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
   append_box(t_shape, Vec3(0, 0, 0), Vec3(1, 1, 3));
   append_box(t_shape, Vec3(-2, -2, 3), Vec3(3, 3, 4));  // shares no vertex with the post: 2 components
   c = classify_column_scene(t_shape);
-  BOOST_TEST(c.column_solids == 2u);        // each box alone is a column solid...
-  BOOST_TEST(!c.valid_from_height(0.0));    // ...but the slab floats: not valid below z = 3
+  BOOST_TEST(c.column_solids == 2u);  // each box alone is a column solid; the slab floats at z = 3
+  BOOST_TEST(c.max_column_floor_z == 3.0);
 }
 
 BOOST_AUTO_TEST_CASE(open_sky_closed_forms) {
@@ -240,7 +243,8 @@ BOOST_AUTO_TEST_CASE(refuses_points_under_or_inside_solids_and_the_driver_falls_
   const ColumnScene columns = classify_column_scene(scene.soup());
   HorizonSvf h(scene, columns, 1e-6);
   SkyFactors f;
-  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 2), Vec3(0, 0, 1)}, f));   // below the floating floor
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 2), Vec3(0, 0, 1)}, f));   // below the floating floor, which it sees
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(6, 1, 0), Vec3(0, 0, 1)}, f));   // on the ground, seeing the floating box
   BOOST_TEST(h.compute(QueryPoint{Vec3(2, 2, 4), Vec3(0, 0, 1)}, f));    // on the roof: valid
   BOOST_TEST(f.svf < 1.0);                                               // the floating box is higher
   BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, f)); // inside the first box
