@@ -51,6 +51,7 @@ struct Piece {
   double t0;            // start; the piece ends where the next begins (the last at 4)
   double wx, wy;        // unit horizontal direction at t0
   std::uint32_t circle;
+  double vmin = 0;      // the envelope's minimum over the piece (tan e): the smaller end value
 };
 
 // Unit directions of the bin edges, t = b/kBinsPerUnit, b = 0 … kBins.
@@ -103,37 +104,39 @@ struct HorizonSvf::Impl {
     return std::size_t(it - pieces.begin()) - 1;
   }
 
-  // Minimum of the envelope over [lo, hi] ⊂ [0, 4], from its pieces: on each piece's part it is
-  // at one end (arcs at or above the horizon have no interior minimum).
-  double exact_min(double lo, double hi) const {
-    std::size_t i = piece_at(lo);
+  // Is the envelope ≥ bound all over [lo, hi] ⊂ [0, 4]? Exact, from its pieces: on each piece's
+  // part the minimum is at one end (arcs at or above the horizon have no interior minimum).
+  bool exact_at_least(double lo, double hi, double bound) const {
+    const std::size_t i = piece_at(lo);
     double wx, wy;
     direction_of(lo, wx, wy);
-    double m = value(pieces[i].circle, wx, wy);
-    for (; i < pieces.size() && pieces[i].t0 < hi && m > 0; ++i) {
-      const std::uint32_t c = pieces[i].circle;
-      if (i + 1 < pieces.size() && pieces[i + 1].t0 < hi) {
-        m = std::min({m, value(c, pieces[i + 1].wx, pieces[i + 1].wy), value(pieces[i + 1].circle, pieces[i + 1].wx, pieces[i + 1].wy)});
-      } else {
-        direction_of(hi, wx, wy);
-        m = std::min(m, value(c, wx, wy));
+    if (value(pieces[i].circle, wx, wy) < bound) return false;
+    std::size_t k = i;
+    for (; k + 1 < pieces.size() && pieces[k + 1].t0 < hi; ++k) {  // piece k ends inside the range
+      if (k == i) {
+        if (value(pieces[k].circle, pieces[k + 1].wx, pieces[k + 1].wy) < bound) return false;
+      } else if (pieces[k].vmin < bound) {
+        return false;
       }
     }
-    return m;
+    if (k != i && value(pieces[k].circle, pieces[k].wx, pieces[k].wy) < bound) return false;  // piece k holds hi
+    direction_of(hi, wx, wy);
+    return value(pieces[k].circle, wx, wy) >= bound;
   }
 
-  // Lower bound of the envelope over [lo, hi] (0 ≤ lo ≤ hi; hi may exceed 4: wraps). Narrow ranges
-  // (a far building) are answered exactly from the pieces; wide ones from the binned minima.
-  double envelope_min(double lo, double hi) const {
+  // Is everything below `bound` (tan of elevation) over the azimuth range [lo, hi] hidden (0 ≤ lo
+  // ≤ hi; hi may exceed 4: wraps)? Narrow ranges (a far building) are answered exactly from the
+  // pieces; wide ones from the binned minima (conservative).
+  bool hidden_below(double lo, double hi, double bound) const {
     if ((hi - lo) * kBinsPerUnit <= 2.0) {
-      if (hi <= 4.0) return exact_min(lo, hi);
-      return std::min(exact_min(lo, 4.0), exact_min(0.0, hi - 4.0));
+      if (hi <= 4.0) return exact_at_least(lo, hi, bound);
+      return exact_at_least(lo, 4.0, bound) && exact_at_least(0.0, hi - 4.0, bound);
     }
     int b0 = int(lo * kBinsPerUnit), b1 = int(hi * kBinsPerUnit);
     if (b1 - b0 >= kBins) b1 = b0 + kBins - 1;
-    double m = kInf;
-    for (int b = b0; b <= b1; ++b) m = std::min(m, bin_min[b & (kBins - 1)]);
-    return m;
+    for (int b = b0; b <= b1; ++b)
+      if (bin_min[b & (kBins - 1)] < bound) return false;
+    return true;
   }
 
   // After the envelope rose to at least circle c over [ta, tb]: the new minimum over a bin inside
@@ -158,12 +161,17 @@ struct HorizonSvf::Impl {
 
   // Raises the envelope to circle c over [ta, tb] ⊂ [0, 4], ta < tb.
   void insert(std::uint32_t c, double ta, double tb) {
+    double wax, way, wbx, wby;
+    direction_of(ta, wax, way);
+    direction_of(tb, wbx, wby);
+    insert(c, ta, tb, wax, way, wbx, wby);
+  }
+  // The same with the unit directions (wa, wb) of ta and tb given.
+  void insert(std::uint32_t c, double ta, double tb, double wax, double way, double wbx, double wby) {
     std::size_t first = piece_at(ta);
     scratch.clear();
     bool changed = false;
-    double u0 = ta, w0x, w0y, wbx, wby;
-    direction_of(ta, w0x, w0y);
-    direction_of(tb, wbx, wby);
+    double u0 = ta, w0x = wax, w0y = way;
     std::size_t j = first;
     for (; j < pieces.size() && pieces[j].t0 < tb; ++j) {
       const std::uint32_t pc = pieces[j].circle;
@@ -218,19 +226,38 @@ struct HorizonSvf::Impl {
       scratch[n++] = scratch[k];
     }
     scratch.resize(n);
-    pieces.erase(pieces.begin() + std::ptrdiff_t(lo), pieces.begin() + std::ptrdiff_t(hi));
-    pieces.insert(pieces.begin() + std::ptrdiff_t(lo), scratch.begin(), scratch.end());
+    for (std::size_t k = 0; k < n; ++k) {
+      double ex = 1.0, ey = 0.0;  // the direction at the piece's end (t = 4 is +x)
+      if (k + 1 < n) ex = scratch[k + 1].wx, ey = scratch[k + 1].wy;
+      else if (hi < pieces.size()) ex = pieces[hi].wx, ey = pieces[hi].wy;
+      scratch[k].vmin = std::min(value(scratch[k].circle, scratch[k].wx, scratch[k].wy), value(scratch[k].circle, ex, ey));
+    }
+    // Splice scratch in place of [lo, hi), moving the tail once.
+    const std::size_t old_size = pieces.size(), replaced = hi - lo;
+    if (n > replaced) {
+      pieces.resize(old_size + (n - replaced));
+      std::move_backward(pieces.begin() + std::ptrdiff_t(hi), pieces.begin() + std::ptrdiff_t(old_size), pieces.end());
+    } else if (n < replaced) {
+      std::move(pieces.begin() + std::ptrdiff_t(hi), pieces.end(), pieces.begin() + std::ptrdiff_t(lo + n));
+      pieces.resize(old_size - (replaced - n));
+    }
+    std::copy(scratch.begin(), scratch.end(), pieces.begin() + std::ptrdiff_t(lo));
     raise_bins(c, ta, tb);
   }
 
-  // Inserts arc c over the azimuth range between diamond angles t0 and t1 (the shorter way).
-  void insert_range(std::uint32_t c, double t0, double t1) {
-    const double lo = std::min(t0, t1), hi = std::max(t0, t1);
-    if (hi - lo < 2) {
-      if (lo < hi) insert(c, lo, hi);
-    } else if (hi - lo > 2) {
-      insert(c, hi, 4.0);
-      if (lo > 0) insert(c, 0.0, lo);
+  // Inserts arc c over the azimuth range between diamond angles t0 and t1 (the shorter way),
+  // whose unit directions are w0 and w1.
+  void insert_range(std::uint32_t c, double t0, double w0x, double w0y, double t1, double w1x, double w1y) {
+    if (t0 > t1) {
+      std::swap(t0, t1);
+      std::swap(w0x, w1x);
+      std::swap(w0y, w1y);
+    }
+    if (t1 - t0 < 2) {
+      if (t0 < t1) insert(c, t0, t1, w0x, w0y, w1x, w1y);
+    } else if (t1 - t0 > 2) {
+      insert(c, t1, 4.0, w1x, w1y, 1.0, 0.0);
+      if (t0 > 0) insert(c, 0.0, t0, 1.0, 0.0, w0x, w0y);
     }
     // exactly 2 apart: the arc passes over the point (a vertical great circle); not an occluder
     // arc of a triangle the method accepts.
@@ -272,7 +299,9 @@ struct HorizonSvf::Impl {
     const Vec3 m = lo.cross(hi);
     if (!(m.z() != 0) || tlo == thi) return;  // radial or vertical: covers no azimuth range
     if (!std::isfinite(m.x() / m.z()) || !std::isfinite(m.y() / m.z())) return;  // a sliver of ~0 azimuth
-    insert_range(add_circle(m), tlo, thi);
+    const double rl = 1.0 / std::sqrt(lo.x() * lo.x() + lo.y() * lo.y());
+    const double rh = 1.0 / std::sqrt(hi.x() * hi.x() + hi.y() * hi.y());
+    insert_range(add_circle(m), tlo, lo.x() * rl, lo.y() * rl, thi, hi.x() * rh, hi.y() * rh);
   }
 
   // Is p under (or on) a triangle reaching above it — inside a column solid or on its surface?
@@ -341,7 +370,7 @@ struct HorizonSvf::Impl {
         lo = std::max(ta, tb);
         hi = std::min(ta, tb) + 4;
       }
-      if (bound <= envelope_min(lo, hi)) return true;
+      if (hidden_below(lo, hi, bound)) return true;
     }
     insert_edge(a, b, ta, tb);
     return true;
@@ -355,19 +384,24 @@ struct HorizonSvf::Impl {
     const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
     if (dx == 0 && dy == 0) return false;
     const double bound = (box.hi.z() - p.z()) / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
-    // Azimuth range of the box seen from outside it (less than π).
-    const double tv[4] = {diamond(x0, y0), diamond(x1, y0), diamond(x0, y1), diamond(x1, y1)};
-    double lo = std::min({tv[0], tv[1], tv[2], tv[3]}), hi = std::max({tv[0], tv[1], tv[2], tv[3]});
-    if (hi - lo >= 2) {
-      double start = 4, end = 0;
-      for (double v : tv) {
-        if (v >= 2) start = std::min(start, v);
-        else end = std::max(end, v);
-      }
-      lo = start;
-      hi = end + 4;
+    // Azimuth range of the box seen from outside it (less than π): from its first corner
+    // counter-clockwise to its last, which depend on where p lies around it.
+    double sx, sy, ex, ey;
+    if (y0 > 0) {                    // box above p
+      sx = x1, sy = x1 > 0 ? y0 : y1;
+      ex = x0, ey = x0 < 0 ? y0 : y1;
+    } else if (y1 < 0) {             // below
+      sx = x0, sy = x0 < 0 ? y1 : y0;
+      ex = x1, ey = x1 > 0 ? y1 : y0;
+    } else if (x0 > 0) {             // right, straddling y = 0
+      sx = x0, sy = y0, ex = x0, ey = y1;
+    } else {                         // left, straddling y = 0
+      sx = x1, sy = y1, ex = x1, ey = y0;
     }
-    return bound <= envelope_min(lo, hi);
+    const double lo = diamond(sx, sy);
+    double hi = diamond(ex, ey);
+    if (hi < lo) hi += 4;  // through t = 0
+    return hidden_below(lo, hi, bound);
   }
 
   static double node_distance2(const Aabb& box, const Vec3& p) {
@@ -429,13 +463,29 @@ struct HorizonSvf::Impl {
   }
 
   // Lambert's formula over the visible region, as a fan of spherical triangles (zenith, a, b),
-  // one per piece (split at quarter turns, so each spans at most π/2).
+  // one per piece (split at quarter turns, so each spans at most π/2): ½ Σ Θ_e n·ĝ_e over the
+  // arcs Z→a, a→b, b→Z (counter-clockwise seen from above). The meridian arcs Z→a and b→Z of
+  // neighbouring triangles cancel where the envelope is continuous, so they are summed only at
+  // its jumps and beside blocked pieces (and not at all for a horizontal face: n·(Z × v) = 0).
   void integrate(const Vec3& n, SkyFactors& out) const {
     const Vec3 Z(0, 0, 1);
+    const bool meridians = n.x() != 0 || n.y() != 0;
+    // ½·Θ·n·ĝ of the meridian arc Z→v (the arc v→Z is its negative).
+    const auto meridian = [&](const Vec3& v) {
+      const Vec3 g = Z.cross(v);
+      const double ng = g.norm();
+      return ng > 0 ? std::atan2(ng, v.z()) * n.dot(g) / ng : 0.0;
+    };
     double phi = 0, omega = 0;
+    Vec3 prev_b = Z;
+    bool prev_valid = false;
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const std::uint32_t c = pieces[i].circle;
-      if (c == kBlocked) continue;
+      if (c == kBlocked) {
+        if (prev_valid && meridians) phi -= meridian(prev_b);
+        prev_valid = false;
+        continue;
+      }
       double u0 = pieces[i].t0;
       const double end = piece_end(i);
       while (u0 < end) {
@@ -445,17 +495,24 @@ struct HorizonSvf::Impl {
         direction_of(u1, bx, by);
         const Vec3 a = Vec3(ax, ay, value(c, ax, ay)).normalized();
         const Vec3 b = Vec3(bx, by, value(c, bx, by)).normalized();
-        // ½ Σ Θ_e n·ĝ_e over the arcs Z→a, a→b, b→Z (counter-clockwise seen from above).
-        const Vec3 za = Z.cross(a), ab = a.cross(b), bz = b.cross(Z);
-        const double nza = za.norm(), nab = ab.norm(), nbz = bz.norm();
-        if (nza > 0) phi += std::atan2(nza, Z.dot(a)) * n.dot(za) / nza;
+        const Vec3 ab = a.cross(b);
+        const double nab = ab.norm();
         if (nab > 0) phi += std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
-        if (nbz > 0) phi += std::atan2(nbz, b.dot(Z)) * n.dot(bz) / nbz;
+        if (meridians) {
+          const bool continuous = prev_valid && (a - prev_b).lpNorm<Eigen::Infinity>() <= 1e-13;
+          if (!continuous) {
+            if (prev_valid) phi -= meridian(prev_b);
+            phi += meridian(a);
+          }
+        }
+        prev_b = b;
+        prev_valid = true;
         // Solid angle of the triangle (Van Oosterom & Strackee 1983).
-        omega += 2 * std::atan2(Z.dot(ab), 1 + Z.dot(a) + a.dot(b) + b.dot(Z));
+        omega += 2 * std::atan2(Z.dot(ab), 1 + a.z() + a.dot(b) + b.z());
         u0 = u1;
       }
     }
+    if (prev_valid && meridians) phi -= meridian(prev_b);
     out.svf = std::clamp(0.5 * phi / kPi, 0.0, 1.0);
     out.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);
   }
