@@ -1,7 +1,7 @@
 // skyband svf — exact sky view factors and sky exposure at calculation points.
 //
 //   skyband svf --mesh FILE [--mesh FILE ...] --points FILE.csv --out FILE.csv
-//               [--bands N | --tolerance T] [--threads K] [--quiet]
+//               [--method auto|bands] [--bands N | --tolerance T] [--threads K] [--quiet]
 //   skyband svf --demo
 //
 // Coordinates are metres with z up (x east, y north), as in the mesh files. The points CSV has a
@@ -9,8 +9,11 @@
 // column passes through. The output holds the input rows in input order plus
 //   svf           cosine-weighted sky view factor (1 open horizontal face, 0.5 open wall),
 //   sky_exposure  visible sky solid angle in front of the face / 2π,
-// and is written atomically. Default accuracy: adaptive band refinement to an estimated absolute
-// SVF error of 5e-4 (measured max error ≤ 1e-3; docs/geometry.md).
+// and is written atomically. Method (docs/geometry.md): by default ("auto") the exact horizon
+// wherever the scene is a column scene from the point (closed extruded buildings on a ground at or
+// below the point: exact, no bands, no tolerance), and the band method elsewhere, with adaptive
+// refinement to an estimated absolute SVF error of 5e-4 (measured max error ≤ 1e-3) or the
+// --bands / --tolerance given; "bands" uses the band method everywhere.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +25,8 @@
 #include "examples/point_job_args.h"
 #include "geometry/band_visibility.h"
 #include "geometry/input_error.h"
+#include "geometry/column_scene.h"
+#include "geometry/sky_factors.h"
 #include "geometry/sky_integral.h"
 #include "io/points_csv.h"
 
@@ -32,7 +37,19 @@ namespace {
 struct SvfArgs {
   PointJobArgs job;
   bool demo = false;
+  std::string method = "auto";
+  SkyFactorsMethod sky_factors_method() const { return method == "bands" ? SkyFactorsMethod::bands : SkyFactorsMethod::automatic; }
 };
+
+// "9800 points by the exact horizon (784 column solids, 1 other component), 200 by bands".
+std::string method_summary(const SkyFactorsRun& run) {
+  const auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  std::string s = count(run.by_horizon, "point", "points") + " by the exact horizon";
+  if (run.column_solids + run.other_components > 0)
+    s += " (" + count(run.column_solids, "column solid", "column solids") + ", " +
+         count(run.other_components, "other component", "other components") + ")";
+  return s + ", " + std::to_string(run.by_bands) + " by bands";
+}
 
 void run_demo(const SvfArgs& a) {
   const DemoScene demo = make_demo_scene();
@@ -41,19 +58,17 @@ void run_demo(const SvfArgs& a) {
   for (const auto& p : demo.points) pts.push_back(p.point);
   const VisibilityOptions opt = a.job.visibility_options();
   const auto t0 = std::chrono::steady_clock::now();
-  const VisibilityCache cache = compute_visibility(scene, pts, opt, a.job.threads);
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.sky_factors_method(), a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points, %s\n",
-              demo.soup.triangle_count(), pts.size(),
-              opt.tolerance > 0 ? ("adaptive bands, tolerance " + std::to_string(opt.tolerance)).c_str()
-                                : (std::to_string(opt.bands) + " bands").c_str());
+  std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s (bands: %s)\n",
+              demo.soup.triangle_count(), pts.size(), method_summary(run).c_str(),
+              opt.tolerance > 0 ? ("adaptive, tolerance " + std::to_string(opt.tolerance)).c_str()
+                                : (std::to_string(opt.bands) + " fixed").c_str());
   std::printf("%-36s %8s %8s %8s %6s %6s\n", "point", "x [m]", "y [m]", "z [m]", "svf", "sky_exp");
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const auto v = cache.view(i);
+  for (std::size_t i = 0; i < pts.size(); ++i)
     std::printf("%-36s %8.1f %8.1f %8.1f %6.4f %6.4f\n", demo.points[i].name.c_str(), pts[i].position.x(),
-                pts[i].position.y(), pts[i].position.z(), sky_view_factor(v), sky_exposure(v));
-  }
-  std::printf("%.3f ms, %.0f bytes/point in the visibility cache\n", seconds * 1e3, cache.bytes_per_point());
+                pts[i].position.y(), pts[i].position.z(), run.factors[i].svf, run.factors[i].sky_exposure);
+  std::printf("%.3f ms\n", seconds * 1e3);
 }
 
 void run(const SvfArgs& a) {
@@ -66,8 +81,9 @@ void run(const SvfArgs& a) {
   const Scene scene(std::move(soup));
   Progress progress("svf", !a.job.quiet);
   // Only the two numbers per point are kept (not the visibility cache): memory stays O(points).
-  const std::vector<SkyFactors> factors = compute_sky_factors(scene, table.points, opt, a.job.threads,
-                                                              [&](std::size_t d, std::size_t t) { progress(d, t); });
+  const SkyFactorsRun run = compute_sky_factors(scene, table.points, opt, a.sky_factors_method(), a.job.threads,
+                                                [&](std::size_t d, std::size_t t) { progress(d, t); });
+  const std::vector<SkyFactors>& factors = run.factors;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   std::vector<std::vector<double>> values(2, std::vector<double>(table.points.size()));
@@ -79,8 +95,8 @@ void run(const SvfArgs& a) {
   if (!a.job.quiet) {
     const std::size_t n = table.points.size();
     const double mean = n ? std::accumulate(values[0].begin(), values[0].end(), 0.0) / double(n) : 0.0;
-    std::fprintf(stderr, "svf: %zu points in %.2f s (%.0f points/s), mean svf %.4f; wrote %s\n", n, seconds,
-                 seconds > 0 ? double(n) / seconds : 0.0, mean, a.job.out.c_str());
+    std::fprintf(stderr, "svf: %zu points in %.2f s (%.0f points/s), mean svf %.4f; %s; wrote %s\n", n, seconds,
+                 seconds > 0 ? double(n) / seconds : 0.0, mean, method_summary(run).c_str(), a.job.out.c_str());
   }
 }
 
@@ -88,10 +104,17 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
   auto args = std::make_shared<SvfArgs>();
   CLI::App* cmd = app.add_subcommand(
       "svf",
-      "Sky view factor and sky exposure at calculation points (exact band-source visibility).\n"
+      "Sky view factor and sky exposure at calculation points: exact horizon where the scene allows it\n"
+      "(closed extruded buildings standing at or below the point), exact band-source visibility elsewhere.\n"
       "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
       "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
   args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
+  cmd->add_option("--method", args->method,
+                  "auto (default): the exact horizon where valid (a column scene seen from the point: every\n"
+                  "closed building extruded from a flat floor at or below the point, every other surface at\n"
+                  "or below it), the band method elsewhere; bands: the band method everywhere.\n"
+                  "--bands/--tolerance set the band method wherever it is used")
+      ->check(CLI::IsMember({"auto", "bands"}));
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
   cmd->callback([args] { run(*args); });
   return cmd;

@@ -57,12 +57,13 @@ BOOST_AUTO_TEST_CASE(end_to_end_values_and_pass_through) {
   BOOST_TEST(slurp(d / "out.csv").find("\"top, centre\"") != std::string::npos);
 }
 
-// --bands N (the paper's fixed bands) and --tolerance T both work and agree within their errors.
+// --method bands with --bands N (the paper's fixed bands) or --tolerance T, and the default exact
+// horizon, all agree with the closed form within their errors.
 BOOST_AUTO_TEST_CASE(bands_and_tolerance_options) {
   const fs::path d = skyband::test::test_folder("svf_cli_opts");
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n";
-  for (const std::string opt : {"--bands 256", "--tolerance 1e-5"}) {
+  for (const std::string opt : {"--method bands --bands 256", "--method bands --tolerance 1e-5", "", "--method auto"}) {
     const auto r = run_skyband("svf --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
                                q(d / "o.csv") + " " + opt);
     BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
@@ -76,8 +77,10 @@ BOOST_AUTO_TEST_CASE(bands_and_tolerance_options) {
     // F = 2·(1/2π)[atan(1/Y) − Y/√(X²+Y²)·atan(1/√(X²+Y²))] = 0.190136, SVF = 1 − F.
     const double X = 2, Y = 1, rho = std::sqrt(X * X + Y * Y);
     const double expected = 1 - 2 * (std::atan(1 / Y) - Y / rho * std::atan(1 / rho)) / (2 * M_PI);
-    // 256 fixed bands: O(1/N²) here (no cube edge is parallel to the axis), measured 5e-7.
-    BOOST_TEST(svf == expected, tt::tolerance(1e-5));
+    // 256 fixed bands: O(1/N²) here (no cube edge is parallel to the axis), measured 5e-7. The
+    // exact horizon (the default): rounding only, and the 1 µm surface offset (dSVF/dz ~ 1e-2/m).
+    const bool exact = opt.find("bands") == std::string::npos;
+    BOOST_TEST(svf == expected, tt::tolerance(exact ? 1e-7 : 1e-5));
   }
 }
 
@@ -101,9 +104,23 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --bands 0", "--bands"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --tolerance -1", "--tolerance"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --method exact", "--method"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
        "no_such_dir"},
   }, d / "out.csv");
+}
+
+// The default method reports which points it computed exactly: the cube on no ground is a column
+// scene, so a point beside it goes by the exact horizon, one inside it by the band method.
+BOOST_AUTO_TEST_CASE(method_summary_on_stderr) {
+  const fs::path d = skyband::test::test_folder("svf_cli_method");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n5,5,5\n";
+  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("1 point by the exact horizon (1 column solid, 0 other components), 1 by bands") != std::string::npos, r.err);
+  const std::string text = slurp(d / "o.csv");
+  BOOST_TEST(text.substr(text.rfind('\n', text.size() - 2) + 1) == "5,5,5,0,0\n");  // inside: nothing seen
 }
 
 // The built-in demo prints its table.
