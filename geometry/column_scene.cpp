@@ -227,6 +227,26 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     const int out_sign = state[e.component].volume6 > 0 ? 1 : -1;
     s.facing_sign[0] = std::int8_t(-out_sign * (e.forward ? 1 : -1));
     s.facing_sign[1] = std::int8_t(-out_sign * (f.forward ? 1 : -1));
+    for (int k = 0; k < 2; ++k) {
+      const Vec3& c = s.c[k];
+      s.face_kind[k] = SilhouetteEdge::kGeneral;
+      s.kind_sign[k] = 0;
+      const int o2 = exact_orient2d_sign(s.a, s.b, c);
+      if (s.a.z() == s.b.z() && s.b.z() == c.z() && o2 != 0) {
+        // det[a − p, b − p, c − p] = n·(a − p), n = (b − a) × (c − a) = (0, 0, orient2d(a, b, c)).
+        s.face_kind[k] = SilhouetteEdge::kHorizontal;
+        s.kind_sign[k] = std::int8_t(o2);
+      } else if (o2 == 0) {
+        // A vertical plane: det[a − p, b − p, c − p] is linear in p and vanishes exactly where
+        // orient2d(a, b, p) does, so it is K·orient2d(a, b, p); K's sign from one point off it.
+        const Vec3 off(s.a.x() - (s.b.y() - s.a.y()), s.a.y() + (s.b.x() - s.a.x()), s.a.z());
+        const int d = exact_orientation(s.a, s.b, c, off), o = exact_orient2d_sign(s.a, s.b, off);
+        if (d != 0 && o != 0) {
+          s.face_kind[k] = SilhouetteEdge::kVertical;
+          s.kind_sign[k] = std::int8_t(d * o);
+        }
+      }
+    }
     out.edges.push_back(s);
   }
   build_edge_bvh(out);

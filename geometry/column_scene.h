@@ -30,11 +30,17 @@ namespace skyband {
 
 // An edge shared by two faces of a column solid. Seen from a point p outside the solid, face k is
 // front-facing (p on its outer side) when facing_sign[k] · sign(det[a − p, b − p, c[k] − p]) > 0.
+// For horizontal and vertical faces that sign has a cheaper exact form (face_kind, kind_sign):
+//   horizontal (a, b, c[k] at one height): sign(det) = kind_sign[k] · sign(c[k].z − p.z);
+//   vertical (xy-projection a segment):    sign(det) = kind_sign[k] · orient2d(a, b, p).
 struct SilhouetteEdge {
+  enum Kind : std::int8_t { kGeneral = 0, kHorizontal = 1, kVertical = 2 };
   Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
   Vec3 c[2];       // the third vertex of each face
   double floor_z;  // metres, the floor of its column solid
   std::int8_t facing_sign[2];
+  std::int8_t face_kind[2];
+  std::int8_t kind_sign[2];
 };
 
 struct EdgeBvhNode {

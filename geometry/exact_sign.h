@@ -64,7 +64,16 @@ inline int exact_orientation(const Vec3& a, const Vec3& b, const Vec3& c, const 
 // (the triangle's normal points up), −1 clockwise, 0 collinear (a vertical or degenerate triangle).
 // The 2D determinant is the 3D one of the points lifted to z = 0 against (0, 0, 1), whose
 // differences are exact: det[a − d, b − d, c − d] = −orient2d(a, b, c).
+// Filter: Shewchuk's orient2d stage-A bound ((3 + 16ε)ε × the permanent; 1997, §4.2).
 inline int exact_orient2d_sign(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double l = (b.x() - a.x()) * (c.y() - a.y()), r = (b.y() - a.y()) * (c.x() - a.x());
+  const double det = l - r;
+  constexpr double kEps = 0x1p-53;
+  const double bound = (3.0 + 16.0 * kEps) * kEps * (std::abs(l) + std::abs(r));
+  if (std::abs(l) + std::abs(r) > 1e-250) {
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
   return -exact_orientation(Vec3(a.x(), a.y(), 0), Vec3(b.x(), b.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
 }
 

@@ -51,7 +51,7 @@ struct Piece {
   double t0;            // start; the piece ends where the next begins (the last at 4)
   double wx, wy;        // unit horizontal direction at t0
   std::uint32_t circle;
-  double vmin = 0;      // the envelope's minimum over the piece (tan e): the smaller end value
+  double v0, v1;        // tan e of the arc at the piece's start and end (its minimum is one of them)
 };
 
 // Unit directions of the bin edges, t = b/kBinsPerUnit, b = 0 … kBins.
@@ -112,50 +112,48 @@ struct HorizonSvf::Impl {
     direction_of(lo, wx, wy);
     if (value(pieces[i].circle, wx, wy) < bound) return false;
     std::size_t k = i;
-    for (; k + 1 < pieces.size() && pieces[k + 1].t0 < hi; ++k) {  // piece k ends inside the range
-      if (k == i) {
-        if (value(pieces[k].circle, pieces[k + 1].wx, pieces[k + 1].wy) < bound) return false;
-      } else if (pieces[k].vmin < bound) {
-        return false;
-      }
-    }
-    if (k != i && value(pieces[k].circle, pieces[k].wx, pieces[k].wy) < bound) return false;  // piece k holds hi
+    for (; k + 1 < pieces.size() && pieces[k + 1].t0 < hi; ++k)  // piece k ends inside the range
+      if (pieces[k].v1 < bound || (k != i && pieces[k].v0 < bound)) return false;
+    if (k != i && pieces[k].v0 < bound) return false;  // piece k holds hi
     direction_of(hi, wx, wy);
     return value(pieces[k].circle, wx, wy) >= bound;
   }
 
   // Is everything below `bound` (tan of elevation) over the azimuth range [lo, hi] hidden (0 ≤ lo
-  // ≤ hi; hi may exceed 4: wraps)? Narrow ranges (a far building) are answered exactly from the
-  // pieces; wide ones from the binned minima (conservative).
+  // ≤ hi; hi may exceed 4: wraps)? Exact: bins wholly inside the range by their exact minima,
+  // the end bins, where their minimum does not decide, from the pieces.
   bool hidden_below(double lo, double hi, double bound) const {
-    if ((hi - lo) * kBinsPerUnit <= 2.0) {
-      if (hi <= 4.0) return exact_at_least(lo, hi, bound);
-      return exact_at_least(lo, 4.0, bound) && exact_at_least(0.0, hi - 4.0, bound);
+    if (hi > 4.0) return hidden_below(lo, 4.0, bound) && hidden_below(0.0, hi - 4.0, bound);
+    const int b0 = std::min(kBins - 1, int(lo * kBinsPerUnit)), b1 = std::min(kBins - 1, int(hi * kBinsPerUnit));
+    for (int b = b0; b <= b1; ++b) {
+      if (bin_min[b] >= bound) continue;
+      if (b != b0 && b != b1) return false;  // wholly inside the range
+      const double s0 = std::max(lo, double(b) / kBinsPerUnit), s1 = std::min(hi, double(b + 1) / kBinsPerUnit);
+      if (!exact_at_least(s0, s1, bound)) return false;
     }
-    int b0 = int(lo * kBinsPerUnit), b1 = int(hi * kBinsPerUnit);
-    if (b1 - b0 >= kBins) b1 = b0 + kBins - 1;
-    for (int b = b0; b <= b1; ++b)
-      if (bin_min[b & (kBins - 1)] < bound) return false;
     return true;
   }
 
-  // After the envelope rose to at least circle c over [ta, tb]: the new minimum over a bin inside
-  // [ta, tb] is at least the larger of its old minimum and c's minimum over the bin, which is at
-  // one of the bin's ends (along an arc at or above the horizon, tan e = A·cos(φ − φ₀) ≥ 0 has no
-  // interior minimum). Bins only partly inside keep their (still valid) old bound.
-  void raise_bins(std::uint32_t c, double ta, double tb) {
+  // Recomputes the exact minima of the bins meeting [lo, hi] ⊂ [0, 4] from the pieces (a piece's
+  // part in a bin has its minimum at one of its ends: arcs at or above the horizon have no
+  // interior minimum).
+  void update_bins(double lo, double hi) {
     const BinDirections& bd = bin_directions();
-    const int b0 = int(std::ceil(ta * kBinsPerUnit)), b1 = int(std::floor(tb * kBinsPerUnit));  // edges inside
-    if (b1 <= b0) return;
-    if (c == kBlocked) {
-      for (int b = b0; b < b1; ++b) bin_min[b] = kInf;
-      return;
-    }
-    double prev = value(c, bd.x[b0], bd.y[b0]);
-    for (int b = b0; b < b1; ++b) {
-      const double next = value(c, bd.x[b + 1], bd.y[b + 1]);
-      bin_min[b] = std::max(bin_min[b], std::min(prev, next));
-      prev = next;
+    const int b0 = std::min(kBins - 1, int(lo * kBinsPerUnit)), b1 = std::min(kBins - 1, int(hi * kBinsPerUnit));
+    std::size_t i = piece_at(double(b0) / kBinsPerUnit);
+    for (int b = b0; b <= b1; ++b) {
+      const double s0 = double(b) / kBinsPerUnit, s1 = double(b + 1) / kBinsPerUnit;
+      while (i + 1 < pieces.size() && pieces[i + 1].t0 <= s0) ++i;
+      double m = kInf;
+      for (std::size_t j = i; j < pieces.size() && pieces[j].t0 < s1 && m > 0; ++j) {
+        const Piece& q = pieces[j];
+        if (q.circle == kBlocked) continue;
+        const bool ends_inside = j + 1 < pieces.size() && pieces[j + 1].t0 <= s1;
+        const double left = q.t0 >= s0 ? q.v0 : value(q.circle, bd.x[b], bd.y[b]);
+        const double right = ends_inside ? q.v1 : value(q.circle, bd.x[b + 1], bd.y[b + 1]);
+        m = std::min({m, left, right});
+      }
+      bin_min[b] = m;
     }
   }
 
@@ -168,28 +166,43 @@ struct HorizonSvf::Impl {
   }
   // The same with the unit directions (wa, wb) of ta and tb given.
   void insert(std::uint32_t c, double ta, double tb, double wax, double way, double wbx, double wby) {
-    std::size_t first = piece_at(ta);
+    const std::size_t first = piece_at(ta);
     scratch.clear();
+    // The new pieces of [lo, hi) go to scratch, starting with the piece before the range (so that
+    // it can join the first new one).
+    const std::size_t lo = first > 0 ? first - 1 : first;
+    if (first > 0) scratch.push_back(pieces[first - 1]);
     bool changed = false;
     double u0 = ta, w0x = wax, w0y = way;
+    double c0 = value(c, w0x, w0y);  // the new arc at u0
     std::size_t j = first;
     for (; j < pieces.size() && pieces[j].t0 < tb; ++j) {
-      const std::uint32_t pc = pieces[j].circle;
+      const Piece q = pieces[j];
+      const std::uint32_t pc = q.circle;
       const bool last = j + 1 == pieces.size();
       const double s1 = last ? 4.0 : pieces[j + 1].t0;
-      if (pieces[j].t0 < u0) scratch.push_back(pieces[j]);  // head outside [ta, tb]
-      double u1, w1x, w1y;
-      if (tb < s1) u1 = tb, w1x = wbx, w1y = wby;
-      else if (last) u1 = 4.0, w1x = 1.0, w1y = 0.0;
-      else u1 = s1, w1x = pieces[j + 1].wx, w1y = pieces[j + 1].wy;
-      const double e0 = value(c, w0x, w0y) - value(pc, w0x, w0y);
-      const double e1 = value(c, w1x, w1y) - value(pc, w1x, w1y);
+      double p0 = q.v0;  // the envelope at u0
+      if (q.t0 < u0) {   // head outside [ta, tb]
+        p0 = value(pc, w0x, w0y);
+        scratch.push_back({q.t0, q.wx, q.wy, pc, q.v0, p0});
+      }
+      double u1, w1x, w1y, p1;  // the overlap's end, and the envelope there
+      if (tb < s1) {
+        u1 = tb, w1x = wbx, w1y = wby;
+        p1 = value(pc, w1x, w1y);
+      } else {
+        u1 = s1, p1 = q.v1;
+        if (last) w1x = 1.0, w1y = 0.0;
+        else w1x = pieces[j + 1].wx, w1y = pieces[j + 1].wy;
+      }
+      const double c1 = value(c, w1x, w1y);
+      const double e0 = c0 - p0, e1 = c1 - p1;
       // Both are great-circle arcs over less than π: their difference (linear in the unit
       // direction) changes sign at most once, where the chord between w0 and w1 crosses zero.
       if (!(e0 > 0 || e1 > 0)) {
-        scratch.push_back({u0, w0x, w0y, pc});
+        scratch.push_back({u0, w0x, w0y, pc, p0, p1});
       } else if (e0 >= 0 && e1 >= 0) {
-        scratch.push_back({u0, w0x, w0y, c});
+        scratch.push_back({u0, w0x, w0y, c, c0, c1});
         changed = true;
       } else {
         const double l = e0 / (e0 - e1);
@@ -198,40 +211,40 @@ struct HorizonSvf::Impl {
         cx *= r;
         cy *= r;
         const double tc = std::clamp(diamond(cx, cy), u0, u1);
-        scratch.push_back({u0, w0x, w0y, e0 > 0 ? c : pc});
-        scratch.push_back({tc, cx, cy, e0 > 0 ? pc : c});
+        const double vc = value(c, cx, cy);  // = the old arc's value there, to rounding
+        if (e0 > 0) {
+          scratch.push_back({u0, w0x, w0y, c, c0, vc});
+          scratch.push_back({tc, cx, cy, pc, vc, p1});
+        } else {
+          scratch.push_back({u0, w0x, w0y, pc, p0, vc});
+          scratch.push_back({tc, cx, cy, c, vc, c1});
+        }
         changed = true;
       }
-      if (u1 < s1) scratch.push_back({u1, w1x, w1y, pc});  // tail outside [ta, tb]
+      if (u1 < s1) scratch.push_back({u1, w1x, w1y, pc, p1, q.v1});  // tail outside [ta, tb]
       u0 = u1;
       w0x = w1x;
       w0y = w1y;
+      c0 = c1;
     }
     if (!changed) return;
     occluded_any = true;
     // Merge: drop empty pieces and join neighbours on the same circle, including the pieces just
     // before and after the replaced range.
-    std::size_t lo = first, hi = j;  // replaced [lo, hi)
-    if (lo > 0) {
-      --lo;
-      scratch.insert(scratch.begin(), pieces[lo]);
-    }
+    std::size_t hi = j;  // replaced [lo, hi)
     if (hi < pieces.size()) scratch.push_back(pieces[hi++]);
     const double final_end = hi < pieces.size() ? pieces[hi].t0 : 4.0;
     std::size_t n = 0;
     for (std::size_t k = 0; k < scratch.size(); ++k) {
       const double end = k + 1 < scratch.size() ? scratch[k + 1].t0 : final_end;
-      if (end <= scratch[k].t0) continue;                                  // empty
-      if (n > 0 && scratch[n - 1].circle == scratch[k].circle) continue;  // joins the previous
+      if (end <= scratch[k].t0) continue;  // empty
+      if (n > 0 && scratch[n - 1].circle == scratch[k].circle) {
+        scratch[n - 1].v1 = scratch[k].v1;  // joins the previous
+        continue;
+      }
       scratch[n++] = scratch[k];
     }
     scratch.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      double ex = 1.0, ey = 0.0;  // the direction at the piece's end (t = 4 is +x)
-      if (k + 1 < n) ex = scratch[k + 1].wx, ey = scratch[k + 1].wy;
-      else if (hi < pieces.size()) ex = pieces[hi].wx, ey = pieces[hi].wy;
-      scratch[k].vmin = std::min(value(scratch[k].circle, scratch[k].wx, scratch[k].wy), value(scratch[k].circle, ex, ey));
-    }
     // Splice scratch in place of [lo, hi), moving the tail once.
     const std::size_t old_size = pieces.size(), replaced = hi - lo;
     if (n > replaced) {
@@ -242,7 +255,7 @@ struct HorizonSvf::Impl {
       pieces.resize(old_size - (replaced - n));
     }
     std::copy(scratch.begin(), scratch.end(), pieces.begin() + std::ptrdiff_t(lo));
-    raise_bins(c, ta, tb);
+    update_bins(ta, tb);
   }
 
   // Inserts arc c over the azimuth range between diamond angles t0 and t1 (the shorter way),
@@ -355,8 +368,18 @@ struct HorizonSvf::Impl {
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
     if (e.floor_z > p.z()) return false;
     ++triangle_tests;
-    const int f0 = e.facing_sign[0] * exact_orientation(e.a, e.b, e.c[0], p);
-    const int f1 = e.facing_sign[1] * exact_orientation(e.a, e.b, e.c[1], p);
+    int o2 = 2;  // orient2d(a, b, p), computed once if a face is vertical
+    const auto side = [&](int k) {
+      switch (e.face_kind[k]) {
+        case SilhouetteEdge::kHorizontal: return e.kind_sign[k] * (e.c[k].z() > p.z() ? 1 : e.c[k].z() < p.z() ? -1 : 0);
+        case SilhouetteEdge::kVertical:
+          if (o2 == 2) o2 = exact_orient2d_sign(e.a, e.b, p);
+          return e.kind_sign[k] * o2;
+        default: return exact_orientation(e.a, e.b, e.c[k], p);
+      }
+    };
+    const int f0 = e.facing_sign[0] * side(0);
+    const int f1 = e.facing_sign[1] * side(1);
     if (f0 == f1 && f0 != 0) return true;
     const Vec3 a = e.a - p, b = e.b - p;
     const double dx = std::max({std::min(a.x(), b.x()), -std::max(a.x(), b.x()), 0.0});
@@ -418,7 +441,7 @@ struct HorizonSvf::Impl {
     if (!columns.valid_from_height(p.z())) return false;
 
     circle.assign(2, {0.0, 0.0});
-    pieces.assign(1, Piece{0.0, 1.0, 0.0, kHorizon});
+    pieces.assign(1, Piece{0.0, 1.0, 0.0, kHorizon, 0.0, 0.0});
     bin_min.fill(0.0);
     occluded_any = false;
     const bool horizontal = n.x() == 0 && n.y() == 0;

@@ -69,3 +69,34 @@ BOOST_AUTO_TEST_CASE(dot_sign_filter_agrees_with_exact) {
     BOOST_TEST((value > 0) - (value < 0) == s);
   }
 }
+
+BOOST_AUTO_TEST_CASE(orient2d_filter_agrees_with_exact) {
+  // The filtered 2D orientation against the exact 3D one of the points lifted to z = 0 (whose
+  // differences from (0, 0, 1) are exact), on random and on nearly collinear points at projected
+  // coordinate magnitudes (x ≈ 4·10⁵, y ≈ 6·10⁶ m), nudged by 0 or 1 ulp.
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-100.0, 100.0);
+  int zeros = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 shift(4e5, 6e6, 0);
+    const Vec3 a = shift + Vec3(u(rng), u(rng), 0), b = shift + Vec3(u(rng), u(rng), 0);
+    Vec3 c = shift + Vec3(u(rng), u(rng), u(rng));
+    if (i % 2 == 1) {
+      c = a + (u(rng) / 50) * (b - a);
+      if (i % 4 == 1) c[i % 8 < 4 ? 0 : 1] = std::nextafter(c[i % 8 < 4 ? 0 : 1], 1e300);
+    }
+    Vec3 ae = a, be = b;
+    if (i % 16 == 2) {  // exactly collinear: a step of quarter metres and its double, all representable
+      const Vec3 step(0.25 * double(int(u(rng))), 0.25 * double(int(u(rng))), 0);
+      ae = shift + Vec3(double(int(u(rng))), double(int(u(rng))), 0);
+      be = ae + step;
+      c = ae + 2.0 * step;
+    }
+    const Vec3 a2 = ae, b2 = be;
+    const int lifted = -exact_orientation_slow(Vec3(a2.x(), a2.y(), 0), Vec3(b2.x(), b2.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
+    BOOST_TEST(exact_orient2d_sign(a2, b2, c) == lifted);
+    zeros += lifted == 0;
+  }
+  BOOST_TEST(zeros > 0);  // the exactly collinear cases were exercised
+  BOOST_TEST(exact_orient2d_sign(Vec3(0, 0, 5), Vec3(1, 0, -2), Vec3(0, 1, 7)) == 1);  // counter-clockwise seen from above
+}
