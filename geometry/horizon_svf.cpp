@@ -41,7 +41,7 @@ inline void direction_of(double t, double& wx, double& wy) {
   wy = y * r;
 }
 
-constexpr int kBins = 256;
+constexpr int kBins = 64;
 constexpr double kBinsPerUnit = kBins / 4.0;
 
 // Circle ids: 0 the horizon (tan e = 0), 1 "blocked" (behind a vertical face: no sky).
