@@ -65,49 +65,95 @@ bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sc * sd < 0;
 }
 
-// Median-split BVH over the edges (longest axis of the centroids' box, leaves of ≤ 4 edges):
-// deterministic, O(n log n); the edges are reordered into leaf order.
-void build_edge_bvh(ColumnScene& out) {
+// BVH over the edges: first over whole solids (median split of their boxes' centres along the
+// longest axis), then, inside a solid with more than 4 edges, over its edges the same way; leaves
+// hold ≤ 4 edges of one solid, so a leaf's box is (part of) one building's. Deterministic,
+// O(n log n); `edges` is reordered (grouped by solid, then into leaf order).
+void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
   std::vector<SilhouetteEdge>& edges = out.edges;
   out.edge_nodes.clear();
   if (edges.empty()) return;
-  const auto centre = [](const SilhouetteEdge& e, int axis) { return 0.5 * (e.a[axis] + e.b[axis]); };
+  {  // group the edges by solid (stable: the order within a solid is kept)
+    std::vector<std::uint32_t> order(edges.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return edge_solid[x] < edge_solid[y]; });
+    std::vector<SilhouetteEdge> sorted(edges.size());
+    std::vector<std::uint32_t> sorted_solid(edges.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = edges[order[i]], sorted_solid[i] = edge_solid[order[i]];
+    edges.swap(sorted);
+    edge_solid.swap(sorted_solid);
+  }
+  struct Group {
+    std::uint32_t first, count;
+    Aabb box;
+  };
+  std::vector<Group> groups;
+  for (std::uint32_t i = 0; i < edges.size();) {
+    std::uint32_t j = i;
+    Group g{i, 0, {}};
+    while (j < edges.size() && edge_solid[j] == edge_solid[i]) {
+      g.box.extend(edges[j].a);
+      g.box.extend(edges[j].b);
+      ++j;
+    }
+    g.count = j - i;
+    groups.push_back(g);
+    i = j;
+  }
+  const auto longest = [](const Aabb& b) {
+    const Vec3 e = b.hi - b.lo;
+    return e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
+  };
   struct Task {
     std::uint32_t node, first, count;
+    bool over_groups;  // [first, first + count) of groups, or of edges (inside one solid)
   };
   out.edge_nodes.push_back({});
-  std::vector<Task> stack{{0, 0, std::uint32_t(edges.size())}};
+  std::vector<Task> stack{{0, 0, std::uint32_t(groups.size()), true}};
   while (!stack.empty()) {
-    const Task task = stack.back();
+    Task task = stack.back();
     stack.pop_back();
+    if (task.over_groups && task.count == 1) task = {task.node, groups[task.first].first, groups[task.first].count, false};
     Aabb box, centres;
     for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
-      box.extend(edges[i].a);
-      box.extend(edges[i].b);
-      centres.extend(0.5 * (edges[i].a + edges[i].b));
+      if (task.over_groups) {
+        box.extend(groups[i].box);
+        centres.extend(groups[i].box.centre());
+      } else {
+        box.extend(edges[i].a);
+        box.extend(edges[i].b);
+        centres.extend(0.5 * (edges[i].a + edges[i].b));
+      }
     }
     out.edge_nodes[task.node].box = box;
-    if (task.count <= 4) {
+    if (!task.over_groups && task.count <= 4) {
       out.edge_nodes[task.node].first = task.first;
       out.edge_nodes[task.node].count = task.count;
       continue;
     }
-    const Vec3 extent = centres.hi - centres.lo;
-    const int axis = extent.x() >= extent.y() ? (extent.x() >= extent.z() ? 0 : 2) : (extent.y() >= extent.z() ? 1 : 2);
+    const int axis = longest(centres);
     const std::uint32_t half = task.count / 2;
-    auto begin = edges.begin() + task.first;
-    std::nth_element(begin, begin + half, begin + task.count, [&](const SilhouetteEdge& x, const SilhouetteEdge& y) {
-      const double cx = centre(x, axis), cy = centre(y, axis);
-      if (cx != cy) return cx < cy;
-      return std::tie(x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2]) < std::tie(y.a[0], y.a[1], y.a[2], y.b[0], y.b[1], y.b[2]);
-    });
+    if (task.over_groups) {
+      auto begin = groups.begin() + task.first;
+      std::nth_element(begin, begin + half, begin + task.count, [&](const Group& x, const Group& y) {
+        const double cx = x.box.centre()[axis], cy = y.box.centre()[axis];
+        return cx != cy ? cx < cy : x.first < y.first;
+      });
+    } else {
+      auto begin = edges.begin() + task.first;
+      std::nth_element(begin, begin + half, begin + task.count, [&](const SilhouetteEdge& x, const SilhouetteEdge& y) {
+        const double cx = 0.5 * (x.a[axis] + x.b[axis]), cy = 0.5 * (y.a[axis] + y.b[axis]);
+        if (cx != cy) return cx < cy;
+        return std::tie(x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2]) < std::tie(y.a[0], y.a[1], y.a[2], y.b[0], y.b[1], y.b[2]);
+      });
+    }
     const std::uint32_t left = std::uint32_t(out.edge_nodes.size());
     out.edge_nodes.push_back({});
     out.edge_nodes.push_back({});
     out.edge_nodes[task.node].first = left;
     out.edge_nodes[task.node].count = 0;
-    stack.push_back({left + 1, task.first + half, task.count - half});
-    stack.push_back({left, task.first, half});
+    stack.push_back({left + 1, task.first + half, task.count - half, task.over_groups});
+    stack.push_back({left, task.first, half, task.over_groups});
   }
 }
 
@@ -201,6 +247,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
 
   // Silhouette candidates (the two triangles of each edge of a closed column solid are
   // consecutive after the sort).
+  std::vector<std::uint32_t> edge_solid;
   for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
     const DirectedEdge &e = edges[i], &f = edges[i + 1];
     if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
@@ -248,8 +295,9 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       }
     }
     out.edges.push_back(s);
+    edge_solid.push_back(e.component);
   }
-  build_edge_bvh(out);
+  build_edge_bvh(out, edge_solid);
   return out;
 }
 
