@@ -87,9 +87,8 @@ struct HorizonSvf::Impl {
   Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
 
   double value(std::uint32_t c, double wx, double wy) const {
-    if (c == kHorizon) return 0.0;
     if (c == kBlocked) return kInf;
-    return circle[c][0] * wx + circle[c][1] * wy;
+    return circle[c][0] * wx + circle[c][1] * wy;  // the horizon's coefficients are (0, 0)
   }
   double value_at(std::uint32_t c, double t) const {
     double wx, wy;
@@ -486,7 +485,7 @@ struct HorizonSvf::Impl {
   }
 
   // Lambert's formula over the visible region, as a fan of spherical triangles (zenith, a, b),
-  // one per piece (split at quarter turns, so each spans at most π/2): ½ Σ Θ_e n·ĝ_e over the
+  // one per piece (pieces longer than a quarter turn cut in equal parts): ½ Σ Θ_e n·ĝ_e over the
   // arcs Z→a, a→b, b→Z (counter-clockwise seen from above). The meridian arcs Z→a and b→Z of
   // neighbouring triangles cancel where the envelope is continuous, so they are summed only at
   // its jumps and beside blocked pieces (and not at all for a horizontal face: n·(Z × v) = 0).
@@ -512,7 +511,8 @@ struct HorizonSvf::Impl {
       double u0 = pieces[i].t0;
       const double end = piece_end(i);
       while (u0 < end) {
-        const double u1 = std::min(end, std::floor(u0) + 1.0);
+        // Pieces longer than a quarter turn are cut in equal parts (each then spans less than π).
+        const double u1 = end - pieces[i].t0 <= 1.0 ? end : std::min(end, u0 + (end - pieces[i].t0) / std::ceil(end - pieces[i].t0));
         double ax, ay, bx, by;
         direction_of(u0, ax, ay);
         direction_of(u1, bx, by);
