@@ -172,6 +172,7 @@ struct HorizonSvf::Impl {
     const std::size_t lo = first > 0 ? first - 1 : first;
     if (first > 0) scratch.push_back(pieces[first - 1]);
     bool changed = false;
+    double changed_lo = tb, changed_hi = ta;  // where the envelope rose
     double u0 = ta, w0x = wax, w0y = way;
     double c0 = value(c, w0x, w0y);  // the new arc at u0
     std::size_t j = first;
@@ -203,6 +204,8 @@ struct HorizonSvf::Impl {
       } else if (e0 >= 0 && e1 >= 0) {
         scratch.push_back({u0, w0x, w0y, c, c0, c1});
         changed = true;
+        changed_lo = std::min(changed_lo, u0);
+        changed_hi = u1;
       } else {
         const double l = e0 / (e0 - e1);
         double cx = (1 - l) * w0x + l * w1x, cy = (1 - l) * w0y + l * w1y;
@@ -214,9 +217,13 @@ struct HorizonSvf::Impl {
         if (e0 > 0) {
           scratch.push_back({u0, w0x, w0y, c, c0, vc});
           scratch.push_back({tc, cx, cy, pc, vc, p1});
+          changed_lo = std::min(changed_lo, u0);
+          changed_hi = tc;
         } else {
           scratch.push_back({u0, w0x, w0y, pc, p0, vc});
           scratch.push_back({tc, cx, cy, c, vc, c1});
+          changed_lo = std::min(changed_lo, tc);
+          changed_hi = u1;
         }
         changed = true;
       }
@@ -254,7 +261,7 @@ struct HorizonSvf::Impl {
       pieces.resize(old_size - (replaced - n));
     }
     std::copy(scratch.begin(), scratch.end(), pieces.begin() + std::ptrdiff_t(lo));
-    update_bins(ta, tb);
+    update_bins(changed_lo, changed_hi);
   }
 
   // Inserts arc c over the azimuth range between diamond angles t0 and t1 (the shorter way),
