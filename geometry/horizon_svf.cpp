@@ -491,6 +491,25 @@ struct HorizonSvf::Impl {
     return true;
   }
 
+  // The fan of the integration below, as unit direction pairs (blocked pieces left out).
+  void visible_fan(std::vector<SkyFanTriangle>& out) const {
+    out.clear();
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const std::uint32_t c = pieces[i].circle;
+      if (c == kBlocked) continue;
+      double u0 = pieces[i].t0;
+      const double end = piece_end(i);
+      while (u0 < end) {
+        const double u1 = end - pieces[i].t0 <= 1.0 ? end : std::min(end, u0 + (end - pieces[i].t0) / std::ceil(end - pieces[i].t0));
+        double ax, ay, bx, by;
+        direction_of(u0, ax, ay);
+        direction_of(u1, bx, by);
+        out.push_back({Vec3(ax, ay, value(c, ax, ay)).normalized(), Vec3(bx, by, value(c, bx, by)).normalized()});
+        u0 = u1;
+      }
+    }
+  }
+
   // Lambert's formula over the visible region, as a fan of spherical triangles (zenith, a, b),
   // one per piece (pieces longer than a quarter turn cut in equal parts): ½ Σ Θ_e n·ĝ_e over the
   // arcs Z→a, a→b, b→Z (counter-clockwise seen from above). The meridian arcs Z→a and b→Z of
@@ -547,6 +566,8 @@ struct HorizonSvf::Impl {
     out.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);
   }
 };
+
+void HorizonSvf::visible_fan(std::vector<SkyFanTriangle>& out) const { impl_->visible_fan(out); }
 
 HorizonSvf::HorizonSvf(const Scene& scene, const ColumnScene& columns, double surface_offset_m)
     : impl_(std::make_unique<Impl>(scene, columns, surface_offset_m)) {}

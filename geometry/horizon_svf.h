@@ -21,10 +21,12 @@
 // their difference).
 #include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "geometry/band_visibility.h"
 #include "geometry/column_scene.h"
 #include "geometry/scene.h"
+#include "geometry/sky_fan.h"
 
 namespace skyband {
 
@@ -43,6 +45,10 @@ class HorizonSvf {
   // it lies over it), and the normal does not face down (n_z ≥ 0). Otherwise returns false and
   // the band method must be used.
   bool compute(const QueryPoint& q, SkyFactors& out);
+
+  // The visible sky of the last compute() that returned true, as a fan of spherical triangles
+  // (geometry/sky_fan.h) in counter-clockwise order: for irradiance under any sky.
+  void visible_fan(std::vector<SkyFanTriangle>& out) const;
 
   // Statistics of the last compute() (benchmarks).
   std::size_t last_triangle_tests() const;
