@@ -13,6 +13,7 @@
 
 #include "geometry/band_visibility.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/sky_factors.h"
 #include "lighting/point_irradiance.h"
 #include "lighting/sun.h"
 
@@ -34,22 +35,26 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
   const double t_sky = seconds_since(t0);
   std::printf("%s: %zu triangles, %zu points (half street, half facade); sky model %.2f s\n", label,
               city.soup.triangle_count(), pts.size(), t_sky);
-  std::printf("| threads | svf points/s | irradiance points/s | irradiance / svf time | sun visible |\n");
-  std::printf("|---------|--------------|---------------------|-----------------------|-------------|\n");
-  for (int threads = 1; threads <= max_threads; ++threads) {
-    t0 = Clock::now();
-    const auto f = compute_sky_factors(scene, pts, VisibilityOptions{}, threads);
-    const double t_svf = seconds_since(t0);
-    PointIrradianceOptions o;
-    o.threads = threads;
-    t0 = Clock::now();
-    const auto r = compute_point_irradiance(scene, pts, sky, o);
-    const double t_irr = seconds_since(t0);
-    const auto lit = std::count_if(r.begin(), r.end(), [](const PointIrradiance& x) { return x.sun_visible; });
-    std::printf("| %7d | %12.0f | %19.0f | %21.2f | %5.1f %%     |\n", threads, double(pts.size()) / t_svf,
-                double(pts.size()) / t_irr, t_irr / t_svf, 100.0 * double(lit) / double(pts.size()));
-    if (f.size() != r.size()) std::printf("size mismatch\n");
-  }
+  std::printf("| method | threads | svf points/s | irradiance points/s | irradiance / svf time | sun visible |\n");
+  std::printf("|--------|---------|--------------|---------------------|-----------------------|-------------|\n");
+  (void)scene.column_scene();  // the exact horizon's classification, once per scene (not timed)
+  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands})
+    for (int threads = 1; threads <= max_threads; ++threads) {
+      t0 = Clock::now();
+      const auto f = compute_sky_factors(scene, pts, VisibilityOptions{}, method, threads);
+      const double t_svf = seconds_since(t0);
+      PointIrradianceOptions o;
+      o.threads = threads;
+      o.method = method;
+      t0 = Clock::now();
+      const auto r = compute_point_irradiance(scene, pts, sky, o);
+      const double t_irr = seconds_since(t0);
+      const auto lit = std::count_if(r.begin(), r.end(), [](const PointIrradiance& x) { return x.sun_visible; });
+      std::printf("| %-6s | %7d | %12.0f | %19.0f | %21.2f | %5.1f %%     |\n", method == SkyFactorsMethod::bands ? "bands" : "auto",
+                  threads, double(pts.size()) / t_svf, double(pts.size()) / t_irr, t_irr / t_svf,
+                  100.0 * double(lit) / double(pts.size()));
+      if (f.factors.size() != r.size()) std::printf("size mismatch\n");
+    }
   // Sums over a day of moments (hourly, sun from 5° to 65° and back): cost per moment, once and
   // per point, from two runs with 12 and 24 moments.
   {
@@ -77,20 +82,24 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
                 "(%.0f us per moment and point, sky model and grid included)\n\n",
                 max_threads, t[0], t[1], per_moment, pts.size(), 1e6 * per_moment / double(pts.size()));
   }
-  // Quadrature error of the sky term against a fine step (0.0125 rad), same cache, and its cost.
+  // Quadrature error of the sky term against a fine step (0.0125 rad), same visibility, and its cost.
   const std::size_t n = std::min<std::size_t>(pts.size(), 400);
   std::vector<QueryPoint> subset(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(n / 2));
   subset.insert(subset.end(), pts.end() - static_cast<std::ptrdiff_t>(n / 2), pts.end());
+  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands}) {
   PointIrradianceOptions fine;
   fine.max_step_rad = 0.0125;
   fine.threads = 1;
+  fine.method = method;
   const auto ref = compute_point_irradiance(scene, subset, sky, fine);
-  std::printf("sky quadrature against step 0.0125 rad (%zu points, 1 thread):\n", subset.size());
+  std::printf("sky quadrature against step 0.0125 rad (%zu points, 1 thread, method %s):\n", subset.size(),
+              method == SkyFactorsMethod::bands ? "bands" : "auto");
   std::printf("| step rad | max relative | max absolute W/m2 | points/s |\n|---|---|---|---|\n");
   for (double step : {0.05, 0.1, 0.2, 0.4}) {
     PointIrradianceOptions o;
     o.max_step_rad = step;
     o.threads = 1;
+    o.method = method;
     t0 = Clock::now();
     const auto a = compute_point_irradiance(scene, subset, sky, o);
     const double t = seconds_since(t0);
@@ -102,6 +111,7 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
     std::printf("| %8.4f | %12.1e | %17.1e | %8.0f |\n", step, max_rel, max_abs, double(subset.size()) / t);
   }
   std::printf("\n");
+  }
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ struct IrradianceArgs {
 PointIrradianceOptions irradiance_options(const PointJobArgs& job) {
   PointIrradianceOptions opt;
   opt.visibility = job.visibility_options();
+  opt.method = job.method();
   opt.threads = job.threads;
   return opt;
 }

@@ -37,8 +37,6 @@ namespace {
 struct SvfArgs {
   PointJobArgs job;
   bool demo = false;
-  std::string method = "auto";
-  SkyFactorsMethod sky_factors_method() const { return method == "bands" ? SkyFactorsMethod::bands : SkyFactorsMethod::automatic; }
 };
 
 // "9800 points by the exact horizon (784 column solids, 1 other component), 200 by bands".
@@ -58,7 +56,7 @@ void run_demo(const SvfArgs& a) {
   for (const auto& p : demo.points) pts.push_back(p.point);
   const VisibilityOptions opt = a.job.visibility_options();
   const auto t0 = std::chrono::steady_clock::now();
-  const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.sky_factors_method(), a.job.threads);
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.job.method(), a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s (bands: %s)\n",
               demo.soup.triangle_count(), pts.size(), method_summary(run).c_str(),
@@ -81,7 +79,7 @@ void run(const SvfArgs& a) {
   const Scene scene(std::move(soup));
   Progress progress("svf", !a.job.quiet);
   // Only the two numbers per point are kept (not the visibility cache): memory stays O(points).
-  const SkyFactorsRun run = compute_sky_factors(scene, table.points, opt, a.sky_factors_method(), a.job.threads,
+  const SkyFactorsRun run = compute_sky_factors(scene, table.points, opt, a.job.method(), a.job.threads,
                                                 [&](std::size_t d, std::size_t t) { progress(d, t); });
   const std::vector<SkyFactors>& factors = run.factors;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -109,12 +107,6 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
       "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
       "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
   args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
-  cmd->add_option("--method", args->method,
-                  "auto (default): the exact horizon where valid (a column scene seen from the point: every\n"
-                  "closed building extruded from a flat floor at or below the point, every other surface at\n"
-                  "or below it), the band method elsewhere; bands: the band method everywhere.\n"
-                  "--bands/--tolerance set the band method wherever it is used")
-      ->check(CLI::IsMember({"auto", "bands"}));
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
   cmd->callback([args] { run(*args); });
   return cmd;

@@ -13,6 +13,12 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
   cmd->add_option("--mesh", meshes, "Mesh file (OBJ, OFF, PLY, STL); repeat for several")->check(CLI::ExistingFile);
   cmd->add_option("--points", points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
   cmd->add_option("--out", out, out_help);
+  cmd->add_option("--method", method_,
+                  "auto (default): the exact horizon where valid (a column scene seen from the point: every\n"
+                  "closed building extruded from a flat floor at or below the point, every other surface at\n"
+                  "or below it), the band method elsewhere; bands: the band method everywhere.\n"
+                  "--bands/--tolerance set the band method wherever it is used")
+      ->check(CLI::IsMember({"auto", "bands"}));
   o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");
   o_tolerance_ = cmd->add_option("--tolerance", tolerance_,
                                  "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "geometry/band_visibility.h"
+#include "geometry/sky_factors.h"
 #include "geometry/triangle_soup.h"
 
 namespace skyband::cli {
@@ -20,11 +21,13 @@ class PointJobArgs {
   int threads = 0;
   bool quiet = false;
 
-  // Adds --mesh, --points, --out (`out_help` says which columns are appended), --bands,
+  // Adds --mesh, --points, --out (`out_help` says which columns are appended), --method, --bands,
   // --tolerance, --threads, --quiet. The object must outlive the command's callback.
   void add_to(CLI::App* cmd, const std::string& out_help);
   // The accuracy options (validated: InputError naming the flag and value).
   VisibilityOptions visibility_options() const;
+  // --method: auto (the exact horizon where the scene allows it, bands elsewhere) or bands.
+  SkyFactorsMethod method() const { return method_ == "bands" ? SkyFactorsMethod::bands : SkyFactorsMethod::automatic; }
   // Requires --mesh, --points and --out (InputError "<command>: ..." naming what is missing;
   // `alternative` is appended to the --mesh message, e.g. " (or --demo)").
   void require_files(const std::string& command, const std::string& alternative = "") const;
@@ -32,6 +35,7 @@ class PointJobArgs {
   TriangleSoup load_meshes() const;
 
  private:
+  std::string method_ = "auto";
   int bands_ = 0;
   double tolerance_ = 0;
   CLI::Option *o_bands_ = nullptr, *o_tolerance_ = nullptr;

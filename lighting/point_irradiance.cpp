@@ -3,9 +3,18 @@
 #include "lighting/point_irradiance.h"
 
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "geometry/horizon_svf.h"
 #include "geometry/input_error.h"
+#include "geometry/sky_fan.h"
 #include "geometry/sky_integral.h"
 #include "lighting/colour.h"
 #include "lighting/sky_radiance_grid.h"
@@ -33,25 +42,88 @@ void check_step(double max_step_rad) {
     throw InputError("irradiance: quadrature step " + std::to_string(max_step_rad) + " rad must be finite and > 0");
 }
 
-// Both channels of the sky term of one cached point through a projected grid.
-void sky_channels(const PointVisibilityView& v, const ProjectedSkyGrid& grid, double max_step_rad, double out[2]) {
-  integrate_irradiance_channels<2>(v, [&](const Vec3& d, double* c) { grid.lookup_unit_n<2>(d, c); }, out, max_step_rad);
-}
+// The visible sky of one point, by whichever method computed it: the band method's cache view
+// (exact α-intervals) or the exact horizon's fan of spherical triangles.
+struct VisibleSky {
+  const PointVisibilityView* bands = nullptr;  // set: the band method
+  std::span<const SkyFanTriangle> fan;          // otherwise: the exact horizon
+  Vec3 normal{0, 0, 1};
+  bool by_horizon() const { return bands == nullptr; }
+  // Both channels of a projected sky grid integrated over the visible sky.
+  void channels(const ProjectedSkyGrid& grid, double max_step_rad, double out[2]) const {
+    const auto lookup = [&](const Vec3& d, double* c) { grid.lookup_unit_n<2>(d, c); };
+    if (bands) integrate_irradiance_channels<2>(*bands, lookup, out, max_step_rad);
+    else integrate_fan_channels<2>(fan, normal, lookup, out, max_step_rad);
+  }
+};
 
-// The visibility of every point, chunk by chunk: fills svf and sky_exposure of out[i] and hands
-// (view, point, the worker's BandVisibility, out[i]) to `fill` for the rest.
+// Every point's visible sky: fills svf and sky_exposure of out[i] and hands (its VisibleSky, the
+// point, a BandVisibility for the exact sun-shadow tests, out[i]) to `fill` for the rest. With the
+// automatic method the exact horizon goes first (geometry/sky_factors.h); the points it declines,
+// and all points with the band method, go through the visibility cache chunk by chunk.
 template <class Result, class Fill>
 std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoint> points, const PointIrradianceOptions& options,
                                    const std::function<void(std::size_t, std::size_t)>& progress, Fill&& fill) {
   std::vector<Result> out(points.size());
-  for_each_visibility_chunk(scene, points, options.visibility, options.threads, progress,
+  std::vector<char> done(points.size(), 0);
+  if (options.method == SkyFactorsMethod::automatic && !points.empty()) {
+    const ColumnScene& columns = scene.column_scene();
+    struct Worker {
+      HorizonSvf horizon;
+      BandVisibility bands;
+      std::vector<SkyFanTriangle> fan;
+      Worker(const Scene& s, const ColumnScene& c, const VisibilityOptions& o) : horizon(s, c, o.surface_offset_m), bands(s, o) {}
+    };
+    tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers;
+    constexpr std::size_t kChunk = 32;
+    const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
+    std::atomic<std::size_t> finished{0};
+    std::mutex progress_mutex;
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency());
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& range) {
+        auto& w = workers.local();
+        if (!w) w = std::make_unique<Worker>(scene, columns, options.visibility);
+        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+          const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
+          for (std::size_t i = first; i < last; ++i) {
+            SkyFactors f;
+            if (!w->horizon.compute(points[i], f)) continue;
+            w->horizon.visible_fan(w->fan);
+            Result& r = out[i];
+            r.svf = f.svf;
+            r.sky_exposure = f.sky_exposure;
+            fill(VisibleSky{nullptr, w->fan, points[i].normal}, points[i], w->bands, r);
+            done[i] = 1;
+          }
+          const std::size_t now = finished += last - first;
+          if (progress) {
+            std::unique_lock lock(progress_mutex, std::try_to_lock);
+            if (lock.owns_lock()) progress(now, points.size());
+          }
+        }
+      });
+    });
+  }
+  std::vector<QueryPoint> rest;
+  std::vector<std::size_t> rest_index;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!done[i]) {
+      rest.push_back(points[i]);
+      rest_index.push_back(i);
+    }
+  const auto rest_progress = [&](std::size_t d, std::size_t) {
+    if (progress) progress(points.size() - rest.size() + d, points.size());
+  };
+  for_each_visibility_chunk(scene, rest, options.visibility, options.threads, progress ? rest_progress : std::function<void(std::size_t, std::size_t)>{},
                             [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
                               for (std::size_t i = 0; i < chunk.size(); ++i) {
                                 const PointVisibilityView v = chunk.view(i);
-                                Result& r = out[first + i];
+                                const std::size_t k = rest_index[first + i];
+                                Result& r = out[k];
                                 r.svf = sky_view_factor(v);
                                 r.sky_exposure = sky_exposure(v);
-                                fill(v, points[first + i], worker, r);
+                                fill(VisibleSky{&v, {}, points[k].normal}, points[k], worker, r);
                               }
                             });
   return out;
@@ -68,23 +140,32 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
   const double sun_W_m2 = dn.integral_nm(), sun_lx = luminous(dn);
   const Vec3 s = sky.sun_direction();
 
-  // The denominator of sky_ratio: an unobstructed horizontal point, same bands and quadrature.
-  double open_sky[2];
+  // The denominator of sky_ratio: an unobstructed horizontal point, same method and quadrature
+  // (so an open horizontal point gives exactly 1 by either method).
+  double open_bands[2], open_fan[2];
   {
     const Scene empty{TriangleSoup{}};
     const QueryPoint up{Vec3(0, 0, 0), Vec3(0, 0, 1)};
     const VisibilityCache open = compute_visibility(empty, std::span<const QueryPoint>(&up, 1), options.visibility, 1);
-    sky_channels(open.view(0), grid, options.max_step_rad, open_sky);
+    const PointVisibilityView open_view = open.view(0);
+    VisibleSky{&open_view, {}, up.normal}.channels(grid, options.max_step_rad, open_bands);
+    HorizonSvf horizon(empty, empty.column_scene(), options.visibility.surface_offset_m);
+    SkyFactors f;
+    std::vector<SkyFanTriangle> fan;
+    horizon.compute(up, f);
+    horizon.visible_fan(fan);
+    VisibleSky{nullptr, fan, up.normal}.channels(grid, options.max_step_rad, open_fan);
   }
 
   return for_each_point<PointIrradiance>(
       scene, points, options, progress,
-      [&](const PointVisibilityView& v, const QueryPoint& q, BandVisibility& worker, PointIrradiance& r) {
+      [&](const VisibleSky& sky_seen, const QueryPoint& q, BandVisibility& worker, PointIrradiance& r) {
         double e[2];
-        sky_channels(v, grid, options.max_step_rad, e);
+        sky_seen.channels(grid, options.max_step_rad, e);
         r.sky_W_m2 = e[0];
         r.sky_lx = e[1];
-        r.sky_ratio = open_sky[1] > 0 ? e[1] / open_sky[1] : 0.0;
+        const double open_lx = sky_seen.by_horizon() ? open_fan[1] : open_bands[1];
+        r.sky_ratio = open_lx > 0 ? e[1] / open_lx : 0.0;
         r.cos_incidence = q.normal.dot(s);
         // direction_visible is false for a sun below the horizon or behind the face.
         r.sun_visible = sun_W_m2 > 0 && r.cos_incidence > 0 && worker.direction_visible(q, s);
@@ -122,10 +203,10 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
 
   return for_each_point<PointIrradiation>(
       scene, points, options, progress,
-      [&](const PointVisibilityView& v, const QueryPoint& q, BandVisibility& worker, PointIrradiation& r) {
+      [&](const VisibleSky& sky_seen, const QueryPoint& q, BandVisibility& worker, PointIrradiation& r) {
         if (!moments.empty()) {
           double e[2];
-          sky_channels(v, sky_hours, options.max_step_rad, e);
+          sky_seen.channels(sky_hours, options.max_step_rad, e);
           r.sky_Wh_m2 = e[0];
           r.sky_lxh = e[1];
         }

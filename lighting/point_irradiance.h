@@ -2,7 +2,12 @@
 // Irradiance on the surface of calculation points — the data product of `skyband irradiance`
 // for daylight and urban-climate analysts: per point, on the plane of its normal n,
 //
-//   sky  E_sky = ∫_visible L(ω) (n·ω) dω = Σ_b w_b Σ_visible ∫ L(ω(α, δ_b)) sin²α dα   (seed eq. 1)
+//   sky  E_sky = ∫_visible L(ω) (n·ω) dω. Where the scene is a column scene from the point
+//        (geometry/column_scene.h; method automatic, the default), over the exact visible sky of
+//        the horizon method as a fan of spherical triangles (geometry/sky_fan.h:
+//        integrate_fan_channels, Gauss–Legendre in azimuth and elevation); svf and sky_exposure
+//        are then exact. Elsewhere
+//        = Σ_b w_b Σ_visible ∫ L(ω(α, δ_b)) sin²α dα   (seed eq. 1)
 //        over the point's visibility cache (exact occluded α-intervals, refined bands). The line
 //        integrals use the Gauss–Legendre quadrature of geometry/sky_integral.h
 //        (integrate_irradiance_channels) instead of per-band tables (sky_lut.h): a refined band
@@ -23,6 +28,7 @@
 #include <vector>
 
 #include "geometry/band_visibility.h"
+#include "geometry/sky_factors.h"
 #include "lighting/sky_model.h"
 
 namespace skyband {
@@ -50,6 +56,9 @@ struct PointIrradianceOptions {
   // with its aureole, city points): relative error 4e-6 at 0.05, 1e-5 at 0.2, 8e-5 at 0.4.
   double max_step_rad = 0.2;
   int threads = 0;  // 0 = all cores; the results do not depend on it
+  // automatic: the exact horizon where valid, the band method (`visibility`) elsewhere; bands:
+  // the band method everywhere (geometry/sky_factors.h).
+  SkyFactorsMethod method = SkyFactorsMethod::automatic;
 };
 
 // Irradiance at every point under one sky and sun. Memory O(points): the visibility cache is

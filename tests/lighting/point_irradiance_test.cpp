@@ -52,12 +52,14 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
   BOOST_TEST(r[1].sky_W_m2 == ev * lz.integral_nm(), tt::tolerance(1e-3));
   BOOST_TEST(r[1].sky_lx == ev * luminous(lz), tt::tolerance(1e-3));
   BOOST_TEST(r[2].sky_W_m2 == eh * lz.integral_nm(), tt::tolerance(1e-3));
-  // sky_ratio: exactly 1 on the open horizontal faces (same bands, same quadrature); on the open
-  // wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
+  // sky_ratio: exactly 1 on the open horizontal face (same method, same quadrature); far away the
+  // exact horizon sees the cube as a sliver (~1e-9 of the sky), and its fan, cut there, is
+  // integrated by different Gauss–Legendre pieces: 1 within the quadrature's error (~1e-6, see
+  // geometry/sky_fan.h). On the open wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
   // unobstructed window that BRE 209 (Littlefair, Site layout planning for daylight and
   // sunlight, 2nd ed. 2011, §2.2) publishes.
   BOOST_TEST(r[0].sky_ratio == 1.0, tt::tolerance(1e-12));
-  BOOST_TEST(r[2].sky_ratio == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(r[2].sky_ratio == 1.0, tt::tolerance(1e-6));
   BOOST_TEST(r[1].sky_ratio == ev / eh, tt::tolerance(1e-3));
   BOOST_TEST(std::abs(100 * r[1].sky_ratio - 39.6) < 0.05);
   // The overcast sky hides the sun (cie_sky.h): no direct term anywhere.
@@ -68,11 +70,11 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
 }
 
 // CIE type 5 is the sky of uniform luminance (a = 0, c = 0, e = 0: L = L_z everywhere above the
-// horizon), so E_sky = π·L_z·SVF exactly, with the SVF of the same cache (closed-form primitive,
-// geometry/sky_integral.h): an identity for any occlusion. Random points around random boxes.
-// Tolerance 2e-5: a constant is interpolated exactly by the grid; the Gauss–Legendre pieces
-// integrate sin²α to ~1e-13; what remains is the grid's float storage (~6e-8 relative) and the
-// interval ends stored as float.
+// horizon), so E_sky = π·L_z·SVF exactly, with the SVF of the same visibility: an identity for any
+// occlusion. Random points around random boxes, by both methods. Tolerance 2e-5: a constant is
+// interpolated exactly by the grid. Band method: the Gauss–Legendre pieces integrate sin²α to
+// ~1e-13; what remains is the grid's float storage (~6e-8 relative) and the interval ends stored
+// as float. Exact horizon: the SVF is exact, the fan's quadrature within ~3e-6 (geometry/sky_fan.h).
 BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
   TriangleSoup soup;
   std::mt19937_64 rng(5);
@@ -91,13 +93,54 @@ BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
   const double lz = sky.radiance(Vec3(0, 0, 1)).integral_nm();
   BOOST_TEST_REQUIRE(lz > 0);
   BOOST_TEST(sky.radiance(Vec3(0.8, 0, 0.6)).integral_nm() == lz, tt::tolerance(1e-12));  // uniform indeed
-  const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
-  int occluded = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    BOOST_TEST(r[i].sky_W_m2 == kPi * lz * r[i].svf, tt::tolerance(2e-5));
-    occluded += r[i].svf < (1 + pts[i].normal.z()) / 2 - 1e-3;
+  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands}) {
+    PointIrradianceOptions opt;
+    opt.method = method;
+    const auto r = compute_point_irradiance(scene, pts, sky, opt);
+    int occluded = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      BOOST_TEST(r[i].sky_W_m2 == kPi * lz * r[i].svf, tt::tolerance(2e-5));
+      occluded += r[i].svf < (1 + pts[i].normal.z()) / 2 - 1e-3;
+    }
+    BOOST_TEST(occluded > 10);  // the identity was tested on occluded points, not only open ones
   }
-  BOOST_TEST(occluded > 10);  // the identity was tested on occluded points, not only open ones
+}
+
+// The two methods on the same points (random boxes on the ground, points around them, the
+// physical sky with its aureole and a low sun): the sun's shadow test is the same exact test, so
+// identical; the SVF agrees within the band method's error (≤ 1e-3 by issue 2's target, measured
+// ≤ 5e-4); the sky irradiance within that plus the two quadratures' (~1e-5 each), relative to the
+// open sky's. Points inside a box go to the band method in both (exact zeros).
+BOOST_AUTO_TEST_CASE(exact_horizon_and_band_method_agree) {
+  TriangleSoup soup;
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 10; ++i) {
+    const Vec3 lo(50 * u(rng) - 25, 50 * u(rng) - 25, 0);
+    append_box(soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
+  }
+  const Scene scene(soup);
+  std::vector<QueryPoint> pts;
+  for (int i = 0; i < 60; ++i) {
+    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
+    pts.push_back(at(60 * u(rng) - 30, 60 * u(rng) - 30, 6 * u(rng), n));
+  }
+  const SkyModel sky = make_sky(20, 230, "multiple");
+  PointIrradianceOptions exact, bands;
+  bands.method = SkyFactorsMethod::bands;
+  const auto a = compute_point_irradiance(scene, pts, sky, exact);
+  const auto b = compute_point_irradiance(scene, pts, sky, bands);
+  const auto open = compute_point_irradiance(Scene(TriangleSoup{}), std::vector<QueryPoint>{at(0, 0, 0)}, sky, bands);
+  int lit = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    BOOST_TEST(a[i].sun_visible == b[i].sun_visible);
+    BOOST_TEST(a[i].sun_W_m2 == b[i].sun_W_m2);
+    BOOST_TEST(std::abs(a[i].svf - b[i].svf) <= 1e-3);
+    BOOST_TEST(std::abs(a[i].sky_W_m2 - b[i].sky_W_m2) <= 1.2e-3 * open[0].sky_W_m2);
+    lit += a[i].sun_visible;
+  }
+  BOOST_TEST(lit > 5);
+  BOOST_TEST(lit < int(pts.size()) - 5);  // both lit and shaded points were compared
 }
 
 // An open horizontal face under the physical sky: the diffuse term equals the sky's horizontal
@@ -185,15 +228,18 @@ BOOST_AUTO_TEST_CASE(results_do_not_depend_on_threads) {
   std::vector<QueryPoint> pts;
   for (int i = 0; i < 600; ++i) pts.push_back(at(-10 + 0.07 * i, -8 + 0.05 * i, 0.01 * (i % 7)));
   const SkyModel sky = make_sky(25, 140, "multiple");
-  PointIrradianceOptions one, two;
-  one.threads = 1;
-  two.threads = 2;
-  const auto a = compute_point_irradiance(scene, pts, sky, one);
-  const auto b = compute_point_irradiance(scene, pts, sky, two);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    BOOST_TEST(a[i].sky_W_m2 == b[i].sky_W_m2);
-    BOOST_TEST(a[i].sun_W_m2 == b[i].sun_W_m2);
-    BOOST_TEST(a[i].svf == b[i].svf);
+  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands}) {
+    PointIrradianceOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    one.method = two.method = method;
+    const auto a = compute_point_irradiance(scene, pts, sky, one);
+    const auto b = compute_point_irradiance(scene, pts, sky, two);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      BOOST_TEST(a[i].sky_W_m2 == b[i].sky_W_m2);
+      BOOST_TEST(a[i].sun_W_m2 == b[i].sun_W_m2);
+      BOOST_TEST(a[i].svf == b[i].svf);
+    }
   }
 }
 
