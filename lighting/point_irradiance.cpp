@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -17,6 +18,7 @@
 #include "geometry/sky_fan.h"
 #include "geometry/sky_integral.h"
 #include "lighting/colour.h"
+#include "lighting/sky_column_table.h"
 #include "lighting/sky_radiance_grid.h"
 
 namespace skyband {
@@ -42,6 +44,14 @@ void check_step(double max_step_rad) {
     throw InputError("irradiance: quadrature step " + std::to_string(max_step_rad) + " rad must be finite and > 0");
 }
 
+// A sky ready for both methods: the projected grid (for the band method's lines) and its column
+// tables (for the exact horizon: sky_column_table.h).
+struct SkyTables {
+  const ProjectedSkyGrid& grid;
+  SkyColumnTable columns;
+  SkyTables(const ProjectedSkyGrid& g, int threads) : grid(g), columns(g, threads) {}
+};
+
 // The visible sky of one point, by whichever method computed it: the band method's cache view
 // (exact α-intervals) or the exact horizon's fan of spherical triangles.
 struct VisibleSky {
@@ -49,11 +59,15 @@ struct VisibleSky {
   std::span<const SkyFanTriangle> fan;          // otherwise: the exact horizon
   Vec3 normal{0, 0, 1};
   bool by_horizon() const { return bands == nullptr; }
-  // Both channels of a projected sky grid integrated over the visible sky.
-  void channels(const ProjectedSkyGrid& grid, double max_step_rad, double out[2]) const {
-    const auto lookup = [&](const Vec3& d, double* c) { grid.lookup_unit_n<2>(d, c); };
-    if (bands) integrate_irradiance_channels<2>(*bands, lookup, out, max_step_rad);
-    else integrate_fan_channels<2>(fan, normal, lookup, out, max_step_rad);
+  // Both channels of the sky integrated over the visible sky: along the band lines (Gauss–Legendre
+  // pieces ≤ max_step_rad), or in azimuth over the fan with the column tables (pieces ≤ a quarter
+  // of it: the one-dimensional quadrature is cheap, and the arcs' elevation e₀(φ) can be steep).
+  void channels(const SkyTables& sky, double max_step_rad, double out[2]) const {
+    if (bands)
+      integrate_irradiance_channels<2>(*bands, [&](const Vec3& d, double* c) { sky.grid.lookup_unit_n<2>(d, c); }, out,
+                                       max_step_rad);
+    else
+      sky.columns.integrate_fan(fan, normal, out, 0.25 * max_step_rad);
   }
 };
 
@@ -135,7 +149,8 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
                                                       const SkyModel& sky, const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress) {
   check_step(options.max_step_rad);
-  const ProjectedSkyGrid grid = project_sky(sky, options.threads);
+  const ProjectedSkyGrid projected = project_sky(sky, options.threads);
+  const SkyTables grid(projected, options.threads);
   const Spectrum& dn = sky.sun_direct_normal();
   const double sun_W_m2 = dn.integral_nm(), sun_lx = luminous(dn);
   const Vec3 s = sky.sun_direction();
@@ -201,12 +216,14 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
     if (sky_progress) sky_progress(t + 1, moments.size());
   }
 
+  std::optional<SkyTables> sky_hours_tables;  // none without moments (an empty grid)
+  if (!moments.empty()) sky_hours_tables.emplace(sky_hours, options.threads);
   return for_each_point<PointIrradiation>(
       scene, points, options, progress,
       [&](const VisibleSky& sky_seen, const QueryPoint& q, BandVisibility& worker, PointIrradiation& r) {
         if (!moments.empty()) {
           double e[2];
-          sky_seen.channels(sky_hours, options.max_step_rad, e);
+          sky_seen.channels(*sky_hours_tables, options.max_step_rad, e);
           r.sky_Wh_m2 = e[0];
           r.sky_lxh = e[1];
         }

@@ -1,0 +1,99 @@
+#include "lighting/sky_column_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace skyband {
+
+namespace {
+constexpr double kHalfPi = 1.57079632679489661923;
+constexpr double kTwoPi = 6.28318530717958647692;
+constexpr int kNodes = SkyColumnTable::kElevationCells + 1;
+constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;  // radians
+constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;   // radians
+constexpr double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+constexpr double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+constexpr double x2[2] = {-0.5773502691896258, 0.5773502691896258};  // ±1/√3, weights 1
+}  // namespace
+
+SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
+    : data_(static_cast<std::size_t>(kAzimuthCells) * kNodes * 2 * kChannels, 0.0) {
+  if (grid.channels() != kChannels) throw std::invalid_argument("SkyColumnTable: the sky grid must have 2 channels");
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_for(0, kAzimuthCells, [&](int i) {
+      const double phi = i * kDphi, cp = std::cos(phi), sp = std::sin(phi);
+      double* col = data_.data() + static_cast<std::size_t>(i) * kNodes * 2 * kChannels;
+      double s[kChannels] = {0, 0}, c[kChannels] = {0, 0}, l[kChannels];
+      // From the zenith down: node j holds the integrals over [e_j, π/2].
+      for (int j = kElevationCells - 1; j >= 0; --j) {
+        for (int g = 0; g < 2; ++g) {  // 2-node Gauss–Legendre per 0.25° cell: exact for cubics
+          const double e = (j + 0.5 * (1 + x2[g])) * kDe, ce = std::cos(e), se = std::sin(e);
+          grid.lookup_n<kChannels>(Vec3(ce * cp, ce * sp, se), l);
+          const double w = 0.5 * kDe;
+          for (int k = 0; k < kChannels; ++k) {
+            s[k] += w * l[k] * se * ce;
+            c[k] += w * l[k] * ce * ce;
+          }
+        }
+        double* node = col + static_cast<std::size_t>(j) * 2 * kChannels;
+        for (int k = 0; k < kChannels; ++k) {
+          node[k] = s[k];
+          node[kChannels + k] = c[k];
+        }
+      }
+    });
+  });
+}
+
+void SkyColumnTable::lookup(double phi, double e, double s[kChannels], double c[kChannels]) const {
+  double u = phi / kDphi;
+  u -= kAzimuthCells * std::floor(u / kAzimuthCells);  // [0, cells)
+  int i0 = static_cast<int>(u);
+  if (i0 >= kAzimuthCells) i0 = kAzimuthCells - 1;
+  const double fu = u - i0;
+  const int i1 = i0 + 1 == kAzimuthCells ? 0 : i0 + 1;
+  const double v = std::clamp(e / kDe, 0.0, double(kElevationCells));
+  const int j0 = std::min(static_cast<int>(v), kElevationCells - 1);
+  const double fv = v - j0;
+  const auto at = [&](int i, int j) { return data_.data() + (static_cast<std::size_t>(i) * kNodes + j) * 2 * kChannels; };
+  const double* a = at(i0, j0);
+  const double* b = at(i1, j0);
+  const double* cc = at(i0, j0 + 1);
+  const double* d = at(i1, j0 + 1);
+  const double w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv, w11 = fu * fv;
+  for (int k = 0; k < kChannels; ++k) {
+    s[k] = w00 * a[k] + w10 * b[k] + w01 * cc[k] + w11 * d[k];
+    c[k] = w00 * a[kChannels + k] + w10 * b[kChannels + k] + w01 * cc[kChannels + k] + w11 * d[kChannels + k];
+  }
+}
+
+void SkyColumnTable::integrate_fan(std::span<const SkyFanTriangle> fan, const Vec3& n, double out[kChannels],
+                                   double max_step_rad) const {
+  for (int k = 0; k < kChannels; ++k) out[k] = 0;
+  double s[kChannels], c[kChannels];
+  for (const SkyFanTriangle& t : fan) {
+    const Vec3 m = t.a.cross(t.b);
+    if (!(m.z() > 0)) continue;  // no azimuth range
+    const double phi0 = std::atan2(t.a.y(), t.a.x());
+    double phi1 = std::atan2(t.b.y(), t.b.x());
+    if (phi1 < phi0) phi1 += kTwoPi;
+    const int np = std::max(1, static_cast<int>(std::ceil((phi1 - phi0) / max_step_rad)));
+    const double hp = (phi1 - phi0) / np;
+    for (int p = 0; p < np; ++p)
+      for (int g = 0; g < 4; ++g) {
+        const double phi = phi0 + hp * (p + 0.5 * (1 + xg[g]));
+        const double cp = std::cos(phi), sp = std::sin(phi);
+        const double e0 = std::clamp(std::atan(-(m.x() * cp + m.y() * sp) / m.z()), 0.0, kHalfPi);
+        lookup(phi, e0, s, c);
+        const double w = 0.5 * hp * wg[g], horizontal = n.x() * cp + n.y() * sp;
+        for (int k = 0; k < kChannels; ++k) out[k] += w * (n.z() * s[k] + horizontal * c[k]);
+      }
+  }
+}
+
+}  // namespace skyband
