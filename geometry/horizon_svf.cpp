@@ -491,27 +491,37 @@ struct HorizonSvf::Impl {
     return true;
   }
 
-  // The fan of the integration below, as unit direction pairs (blocked pieces left out).
-  void visible_fan(std::vector<SkyFanTriangle>& out) const {
-    out.clear();
+  // The visible region as a fan of spherical triangles (zenith, a, b), in counter-clockwise
+  // order: on_triangle(a, b) per piece (pieces longer than a quarter turn cut in equal parts, so
+  // each spans less than π), on_blocked() per blocked piece (behind a vertical face).
+  template <class OnTriangle, class OnBlocked>
+  void for_each_fan_triangle(OnTriangle&& on_triangle, OnBlocked&& on_blocked) const {
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const std::uint32_t c = pieces[i].circle;
-      if (c == kBlocked) continue;
-      double u0 = pieces[i].t0;
-      const double end = piece_end(i);
-      while (u0 < end) {
-        const double u1 = end - pieces[i].t0 <= 1.0 ? end : std::min(end, u0 + (end - pieces[i].t0) / std::ceil(end - pieces[i].t0));
+      if (c == kBlocked) {
+        on_blocked();
+        continue;
+      }
+      const double start = pieces[i].t0, end = piece_end(i);
+      const double step = end - start <= 1.0 ? end - start : (end - start) / std::ceil(end - start);
+      for (double u0 = start; u0 < end;) {
+        const double u1 = std::min(end, u0 + step);
         double ax, ay, bx, by;
         direction_of(u0, ax, ay);
         direction_of(u1, bx, by);
-        out.push_back({Vec3(ax, ay, value(c, ax, ay)).normalized(), Vec3(bx, by, value(c, bx, by)).normalized()});
+        on_triangle(Vec3(ax, ay, value(c, ax, ay)).normalized(), Vec3(bx, by, value(c, bx, by)).normalized());
         u0 = u1;
       }
     }
   }
 
-  // Lambert's formula over the visible region, as a fan of spherical triangles (zenith, a, b),
-  // one per piece (pieces longer than a quarter turn cut in equal parts): ½ Σ Θ_e n·ĝ_e over the
+  void visible_fan(std::vector<SkyFanTriangle>& out) const {
+    out.clear();
+    for_each_fan_triangle([&](const Vec3& a, const Vec3& b) { out.push_back({a, b}); }, [] {});
+  }
+
+  // Lambert's formula over the visible region, as the fan of spherical triangles (zenith, a, b)
+  // of for_each_fan_triangle: ½ Σ Θ_e n·ĝ_e over the
   // arcs Z→a, a→b, b→Z (counter-clockwise seen from above). The meridian arcs Z→a and b→Z of
   // neighbouring triangles cancel where the envelope is continuous, so they are summed only at
   // its jumps and beside blocked pieces (and not at all for a horizontal face: n·(Z × v) = 0).
@@ -527,40 +537,27 @@ struct HorizonSvf::Impl {
     double phi = 0, omega = 0;
     Vec3 prev_b = Z;
     bool prev_valid = false;
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      const std::uint32_t c = pieces[i].circle;
-      if (c == kBlocked) {
-        if (prev_valid && meridians) phi -= meridian(prev_b);
-        prev_valid = false;
-        continue;
-      }
-      double u0 = pieces[i].t0;
-      const double end = piece_end(i);
-      while (u0 < end) {
-        // Pieces longer than a quarter turn are cut in equal parts (each then spans less than π).
-        const double u1 = end - pieces[i].t0 <= 1.0 ? end : std::min(end, u0 + (end - pieces[i].t0) / std::ceil(end - pieces[i].t0));
-        double ax, ay, bx, by;
-        direction_of(u0, ax, ay);
-        direction_of(u1, bx, by);
-        const Vec3 a = Vec3(ax, ay, value(c, ax, ay)).normalized();
-        const Vec3 b = Vec3(bx, by, value(c, bx, by)).normalized();
-        const Vec3 ab = a.cross(b);
-        const double nab = ab.norm();
-        if (nab > 0) phi += std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
-        if (meridians) {
-          const bool continuous = prev_valid && (a - prev_b).lpNorm<Eigen::Infinity>() <= 1e-13;
-          if (!continuous) {
-            if (prev_valid) phi -= meridian(prev_b);
-            phi += meridian(a);
+    for_each_fan_triangle(
+        [&](const Vec3& a, const Vec3& b) {
+          const Vec3 ab = a.cross(b);
+          const double nab = ab.norm();
+          if (nab > 0) phi += std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
+          if (meridians) {
+            const bool continuous = prev_valid && (a - prev_b).lpNorm<Eigen::Infinity>() <= 1e-13;
+            if (!continuous) {
+              if (prev_valid) phi -= meridian(prev_b);
+              phi += meridian(a);
+            }
           }
-        }
-        prev_b = b;
-        prev_valid = true;
-        // Solid angle of the triangle (Van Oosterom & Strackee 1983).
-        omega += 2 * std::atan2(Z.dot(ab), 1 + a.z() + a.dot(b) + b.z());
-        u0 = u1;
-      }
-    }
+          prev_b = b;
+          prev_valid = true;
+          // Solid angle of the triangle (Van Oosterom & Strackee 1983).
+          omega += 2 * std::atan2(Z.dot(ab), 1 + a.z() + a.dot(b) + b.z());
+        },
+        [&] {
+          if (prev_valid && meridians) phi -= meridian(prev_b);
+          prev_valid = false;
+        });
     if (prev_valid && meridians) phi -= meridian(prev_b);
     out.svf = std::clamp(0.5 * phi / kPi, 0.0, 1.0);
     out.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);

@@ -1,15 +1,10 @@
 #include "geometry/sky_factors.h"
 
-#include <atomic>
 #include <memory>
-#include <mutex>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "geometry/column_scene.h"
 #include "geometry/horizon_svf.h"
+#include "geometry/parallel_chunks.h"
 
 namespace skyband {
 
@@ -29,28 +24,10 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
 
   // Pass 1: the exact horizon; points where it is not valid are marked.
   std::vector<char> done_by_horizon(points.size(), 0);
-  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-  constexpr std::size_t kChunk = 64;
-  const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
-  tbb::enumerable_thread_specific<std::unique_ptr<HorizonSvf>> workers;
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  tbb::task_arena arena(n);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& range) {
-      auto& worker = workers.local();
-      if (!worker) worker = std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m);
-      for (std::size_t c = range.begin(); c != range.end(); ++c) {
-        const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
-        for (std::size_t i = first; i < last; ++i) done_by_horizon[i] = worker->compute(points[i], run.factors[i]);
-        const std::size_t now = done += (last - first);
-        if (progress) {
-          std::unique_lock lock(progress_mutex, std::try_to_lock);
-          if (lock.owns_lock()) progress(now, points.size());
-        }
-      }
-    });
-  });
+  for_each_in_chunks(
+      points.size(), 64, threads, progress,
+      [&] { return std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m); },
+      [&](HorizonSvf& horizon, std::size_t i) { done_by_horizon[i] = horizon.compute(points[i], run.factors[i]); });
 
   // Pass 2: the band method on the rest.
   std::vector<QueryPoint> rest;

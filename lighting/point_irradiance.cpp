@@ -3,18 +3,13 @@
 #include "lighting/point_irradiance.h"
 
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <optional>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "geometry/horizon_svf.h"
 #include "geometry/input_error.h"
+#include "geometry/parallel_chunks.h"
 #include "geometry/sky_fan.h"
 #include "geometry/sky_integral.h"
 #include "lighting/colour.h"
@@ -88,36 +83,19 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
       std::vector<SkyFanTriangle> fan;
       Worker(const Scene& s, const ColumnScene& c, const VisibilityOptions& o) : horizon(s, c, o.surface_offset_m), bands(s, o) {}
     };
-    tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers;
-    constexpr std::size_t kChunk = 32;
-    const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
-    std::atomic<std::size_t> finished{0};
-    std::mutex progress_mutex;
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency());
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& range) {
-        auto& w = workers.local();
-        if (!w) w = std::make_unique<Worker>(scene, columns, options.visibility);
-        for (std::size_t c = range.begin(); c != range.end(); ++c) {
-          const std::size_t first = c * kChunk, last = std::min(points.size(), first + kChunk);
-          for (std::size_t i = first; i < last; ++i) {
-            SkyFactors f;
-            if (!w->horizon.compute(points[i], f)) continue;
-            w->horizon.visible_fan(w->fan);
-            Result& r = out[i];
-            r.svf = f.svf;
-            r.sky_exposure = f.sky_exposure;
-            fill(VisibleSky{nullptr, w->fan, points[i].normal}, points[i], w->bands, r);
-            done[i] = 1;
-          }
-          const std::size_t now = finished += last - first;
-          if (progress) {
-            std::unique_lock lock(progress_mutex, std::try_to_lock);
-            if (lock.owns_lock()) progress(now, points.size());
-          }
-        }
-      });
-    });
+    for_each_in_chunks(
+        points.size(), 32, options.threads, progress,
+        [&] { return std::make_unique<Worker>(scene, columns, options.visibility); },
+        [&](Worker& w, std::size_t i) {
+          SkyFactors f;
+          if (!w.horizon.compute(points[i], f)) return;
+          w.horizon.visible_fan(w.fan);
+          Result& r = out[i];
+          r.svf = f.svf;
+          r.sky_exposure = f.sky_exposure;
+          fill(VisibleSky{nullptr, w.fan, points[i].normal}, points[i], w.bands, r);
+          done[i] = 1;
+        });
   }
   std::vector<QueryPoint> rest;
   std::vector<std::size_t> rest_index;

@@ -15,8 +15,6 @@ constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kNodes = SkyColumnTable::kElevationCells + 1;
 constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;  // radians
 constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;   // radians
-constexpr double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-constexpr double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
 constexpr double x2[2] = {-0.5773502691896258, 0.5773502691896258};  // ±1/√3, weights 1
 }  // namespace
 
@@ -76,24 +74,11 @@ void SkyColumnTable::integrate_fan(std::span<const SkyFanTriangle> fan, const Ve
                                    double max_step_rad) const {
   for (int k = 0; k < kChannels; ++k) out[k] = 0;
   double s[kChannels], c[kChannels];
-  for (const SkyFanTriangle& t : fan) {
-    const Vec3 m = t.a.cross(t.b);
-    if (!(m.z() > 0)) continue;  // no azimuth range
-    const double phi0 = std::atan2(t.a.y(), t.a.x());
-    double phi1 = std::atan2(t.b.y(), t.b.x());
-    if (phi1 < phi0) phi1 += kTwoPi;
-    const int np = std::max(1, static_cast<int>(std::ceil((phi1 - phi0) / max_step_rad)));
-    const double hp = (phi1 - phi0) / np;
-    for (int p = 0; p < np; ++p)
-      for (int g = 0; g < 4; ++g) {
-        const double phi = phi0 + hp * (p + 0.5 * (1 + xg[g]));
-        const double cp = std::cos(phi), sp = std::sin(phi);
-        const double e0 = std::clamp(std::atan(-(m.x() * cp + m.y() * sp) / m.z()), 0.0, kHalfPi);
-        lookup(phi, e0, s, c);
-        const double w = 0.5 * hp * wg[g], horizontal = n.x() * cp + n.y() * sp;
-        for (int k = 0; k < kChannels; ++k) out[k] += w * (n.z() * s[k] + horizontal * c[k]);
-      }
-  }
+  for_each_fan_azimuth_node(fan, max_step_rad, [&](double phi, double cp, double sp, double e0, double w) {
+    lookup(phi, e0, s, c);
+    const double horizontal = n.x() * cp + n.y() * sp;
+    for (int k = 0; k < kChannels; ++k) out[k] += w * (n.z() * s[k] + horizontal * c[k]);
+  });
 }
 
 }  // namespace skyband
