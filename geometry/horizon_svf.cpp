@@ -474,7 +474,11 @@ struct HorizonSvf::Impl {
           continue;
         }
         const std::uint32_t l = node.first, r = node.first + 1;
-        const bool left_first = node_distance2(nodes[l].box, p) <= node_distance2(nodes[r].box, p);
+        const auto key = [&](const Aabb& b) {  // −(bound²): the child that can rise highest first
+          const double d2 = node_distance2(b, p), dz = b.hi.z() - p.z();
+          return d2 > 0 ? -(dz * std::abs(dz)) / d2 : -1e300;
+        };
+        const bool left_first = key(nodes[l].box) <= key(nodes[r].box);
         stack.push_back(left_first ? r : l);  // far child below the near one
         stack.push_back(left_first ? l : r);
       }
