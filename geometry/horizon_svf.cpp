@@ -106,16 +106,21 @@ struct HorizonSvf::Impl {
   // Is the envelope ≥ bound all over [lo, hi] ⊂ [0, 4]? Exact, from its pieces: on each piece's
   // part the minimum is at one end (arcs at or above the horizon have no interior minimum).
   bool exact_at_least(double lo, double hi, double bound) const {
+    // A piece's minimum over any part of it is at least the smaller of its end values; the value
+    // at lo or hi itself is computed only where that does not decide.
+    const auto at_least_at = [&](const Piece& q, double t) {
+      if (std::min(q.v0, q.v1) >= bound) return true;
+      double wx, wy;
+      direction_of(t, wx, wy);
+      return value(q.circle, wx, wy) >= bound;
+    };
     const std::size_t i = piece_at(lo);
-    double wx, wy;
-    direction_of(lo, wx, wy);
-    if (value(pieces[i].circle, wx, wy) < bound) return false;
+    if (!at_least_at(pieces[i], lo)) return false;
     std::size_t k = i;
     for (; k + 1 < pieces.size() && pieces[k + 1].t0 < hi; ++k)  // piece k ends inside the range
       if (pieces[k].v1 < bound || (k != i && pieces[k].v0 < bound)) return false;
     if (k != i && pieces[k].v0 < bound) return false;  // piece k holds hi
-    direction_of(hi, wx, wy);
-    return value(pieces[k].circle, wx, wy) >= bound;
+    return at_least_at(pieces[k], hi);
   }
 
   // Is everything below `bound` (tan of elevation) over the azimuth range [lo, hi] hidden (0 ≤ lo
