@@ -23,6 +23,7 @@
 //   sky_lxh, sun_lxh, global_lxh (lx·h): one geometry pass, one quadrature of the time-summed sky
 //   per point, one exact shadow test per moment and point.
 // Not included: light reflected by the ground and the buildings.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <numeric>
@@ -121,8 +122,9 @@ void run_times(const IrradianceArgs& a) {
   if (!a.job.quiet) {
     double hours = 0;
     for (const SunMoment& m : moments) hours += m.hours;
-    std::fprintf(stderr, "irradiance: %zu points x %zu moments (%.2f h) in %.2f s; wrote %s\n", r.size(), moments.size(),
-                 hours, seconds, a.job.out.c_str());
+    const auto exact = std::count_if(r.begin(), r.end(), [](const PointIrradiation& x) { return x.exact_horizon; });
+    std::fprintf(stderr, "irradiance: %zu points x %zu moments (%.2f h) in %.2f s; %zu by the exact horizon, %zu by bands; wrote %s\n",
+                 r.size(), moments.size(), hours, seconds, std::size_t(exact), r.size() - std::size_t(exact), a.job.out.c_str());
   }
 }
 
@@ -188,8 +190,12 @@ void run(const IrradianceArgs& a) {
     std::fprintf(stderr,
                  "irradiance: sun altitude %.3f deg, azimuth %.3f deg, direct normal %.1f W/m2 (%.0f lx); sky %s\n",
                  sun.altitude_deg, sun.azimuth_deg, dn.integral_nm(), luminous(dn), sky.model_name().c_str());
-    std::fprintf(stderr, "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); wrote %s\n",
-                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, a.job.out.c_str());
+    const auto exact = std::count_if(r.begin(), r.end(), [](const PointIrradiance& x) { return x.exact_horizon; });
+    std::fprintf(stderr,
+                 "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); %zu by the exact horizon, "
+                 "%zu by bands; wrote %s\n",
+                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, std::size_t(exact), n - std::size_t(exact),
+                 a.job.out.c_str());
   }
 }
 

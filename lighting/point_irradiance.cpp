@@ -93,6 +93,7 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
           Result& r = out[i];
           r.svf = f.svf;
           r.sky_exposure = f.sky_exposure;
+          r.exact_horizon = true;
           fill(VisibleSky{nullptr, w.fan, points[i].normal}, points[i], w.bands, r);
           done[i] = 1;
         });

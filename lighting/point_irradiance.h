@@ -48,6 +48,7 @@ struct PointIrradiance {
   // overcast sky this is the vertical sky component of a vertical face (BRE 209, BS 8206-2:
   // 39.6 % unobstructed) and the sky factor of a horizontal one.
   double sky_ratio = 0;
+  bool exact_horizon = false;  // computed by the exact horizon (else by the band method)
 };
 
 struct PointIrradianceOptions {
@@ -88,6 +89,7 @@ struct PointIrradiation {
   double sun_Wh_m2 = 0;   // direct sun irradiation, W·h·m⁻² (380–780 nm)
   double sky_lxh = 0;     // diffuse sky light exposure, lx·h
   double sun_lxh = 0;     // direct sun light exposure, lx·h
+  bool exact_horizon = false;  // computed by the exact horizon (else by the band method)
 };
 
 // Builds each moment's SkyModel in turn (InputError for invalid parameters or hours, naming the

@@ -104,6 +104,20 @@ BOOST_AUTO_TEST_CASE(end_to_end_against_the_sky_command) {
   BOOST_TEST(num(wall, "cos_incidence") == cos30, tt::tolerance(1e-9));
   BOOST_TEST(num(wall, "sun_W_m2") == dn * cos30, tt::tolerance(1e-9));
   BOOST_TEST(num(wall, "svf") == 0.5, tt::tolerance(1e-9));
+  // The cube (a closed box) is a column scene: every point went by the exact horizon, and stderr
+  // says so; with --method bands none does, and the results agree within the band method's error.
+  BOOST_TEST(r.err.find("3 by the exact horizon, 0 by bands") != std::string::npos, r.err);
+  const auto rb = run_skyband("irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                              q(d / "out_bands.csv") + sun + " --method bands");
+  BOOST_TEST_REQUIRE(rb.exit_code == 0, rb.err);
+  BOOST_TEST(rb.err.find("0 by the exact horizon, 3 by bands") != std::string::npos, rb.err);
+  const auto rows_b = read_csv(d / "out_bands.csv");
+  BOOST_TEST_REQUIRE(rows_b.size() == 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    BOOST_TEST(std::abs(num(rows_b[i], "svf") - num(rows[i], "svf")) <= 1e-3);  // the band method's target
+    BOOST_TEST(num(rows_b[i], "sky_W_m2") == num(rows[i], "sky_W_m2"), tt::tolerance(2e-3));
+    BOOST_TEST(num(rows_b[i], "sun_visible") == num(rows[i], "sun_visible"));
+  }
 }
 
 // The sun from place and time (NREL SPA) gives the same sun as `skyband sky` for that moment:
