@@ -31,7 +31,7 @@ namespace skyband {
 // An edge shared by two faces of a column solid. Seen from a point p outside the solid, face k is
 // front-facing (p on its outer side) when facing_sign[k] · sign(det[a − p, b − p, c[k] − p]) > 0.
 // For horizontal and vertical faces that sign has a cheaper exact form (face_kind, kind_sign):
-//   horizontal (a, b, c[k] at one height): sign(det) = kind_sign[k] · sign(c[k].z − p.z);
+//   horizontal (a, b, c[k] at one height): sign(det) = kind_sign[k] · sign(a.z − p.z);
 //   vertical (xy-projection a segment):    sign(det) = kind_sign[k] · orient2d(a, b, p).
 struct SilhouetteEdge {
   enum Kind : std::int8_t { kGeneral = 0, kHorizontal = 1, kVertical = 2 };

@@ -382,7 +382,7 @@ struct HorizonSvf::Impl {
     int o2 = 2;  // orient2d(a, b, p), computed once if a face is vertical
     const auto side = [&](int k) {
       switch (e.face_kind[k]) {
-        case SilhouetteEdge::kHorizontal: return e.kind_sign[k] * (e.c[k].z() > p.z() ? 1 : e.c[k].z() < p.z() ? -1 : 0);
+        case SilhouetteEdge::kHorizontal: return e.kind_sign[k] * (e.a.z() > p.z() ? 1 : e.a.z() < p.z() ? -1 : 0);  // c.z = a.z
         case SilhouetteEdge::kVertical:
           if (o2 == 2) o2 = exact_orient2d_sign(e.a, e.b, p);
           return e.kind_sign[k] * o2;
