@@ -16,7 +16,8 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
   cmd->add_option("--method", method_,
                   "auto (default): the exact horizon where valid (a column scene seen from the point: every\n"
                   "closed building extruded from a flat floor at or below the point, every other surface at\n"
-                  "or below it), the band method elsewhere; bands: the band method everywhere.\n"
+                  "or below it or hidden behind them), the band method elsewhere; bands: the band method\n"
+                  "everywhere. "
                   "--bands/--tolerance set the band method wherever it is used")
       ->check(CLI::IsMember({"auto", "bands"}));
   o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");

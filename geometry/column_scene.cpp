@@ -157,6 +157,54 @@ void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
   }
 }
 
+// Median-split BVH over triangles (their boxes' centres, longest axis; leaves of ≤ 4);
+// `triangles` is reordered into leaf order. Deterministic.
+void build_triangle_bvh(const TriangleSoup& soup, std::vector<std::uint32_t>& triangles, std::vector<EdgeBvhNode>& nodes) {
+  nodes.clear();
+  if (triangles.empty()) return;
+  const auto box_of = [&](std::uint32_t t) {
+    Aabb b;
+    for (std::uint32_t v : soup.triangles[t]) b.extend(soup.vertices[v]);
+    return b;
+  };
+  struct Task {
+    std::uint32_t node, first, count;
+  };
+  nodes.push_back({});
+  std::vector<Task> stack{{0, 0, std::uint32_t(triangles.size())}};
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    Aabb box, centres;
+    for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
+      const Aabb b = box_of(triangles[i]);
+      box.extend(b);
+      centres.extend(b.centre());
+    }
+    nodes[task.node].box = box;
+    if (task.count <= 4) {
+      nodes[task.node].first = task.first;
+      nodes[task.node].count = task.count;
+      continue;
+    }
+    const Vec3 e = centres.hi - centres.lo;
+    const int axis = e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
+    const std::uint32_t half = task.count / 2;
+    auto begin = triangles.begin() + task.first;
+    std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t x, std::uint32_t y) {
+      const double cx = box_of(x).centre()[axis], cy = box_of(y).centre()[axis];
+      return cx != cy ? cx < cy : x < y;
+    });
+    const std::uint32_t left = std::uint32_t(nodes.size());
+    nodes.push_back({});
+    nodes.push_back({});
+    nodes[task.node].first = left;
+    nodes[task.node].count = 0;
+    stack.push_back({left + 1, task.first + half, task.count - half});
+    stack.push_back({left, task.first, half});
+  }
+}
+
 }  // namespace
 
 ColumnScene classify_column_scene(const TriangleSoup& soup) {
@@ -298,6 +346,11 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     edge_solid.push_back(e.component);
   }
   build_edge_bvh(out, edge_solid);
+
+  // The other components' triangles, with a median-split BVH (leaves of ≤ 4 triangles).
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!column[root[t]]) out.other_triangles.push_back(t);
+  build_triangle_bvh(soup, out.other_triangles, out.other_nodes);
   return out;
 }
 

@@ -13,8 +13,8 @@
 // its floor: a building extruded from its footprint (flat or pitched roofs, any footprint, with
 // courtyards) is one; an overhang, a bridge or a floating box is not.
 //
-// From a point P outside every column solid with z_P ≥ the floor of every column solid it sees and
-// ≥ every vertex of every other triangle, a sky direction is occluded exactly when it lies below the highest scene
+// From a point P outside every column solid with z_P ≥ the floor of every column solid it sees, and
+// every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is occluded exactly when it lies below the highest scene
 // point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a horizon
 // function of azimuth alone.
 #include <array>
@@ -63,10 +63,14 @@ struct ColumnScene {
   std::vector<SilhouetteEdge> edges;
   std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
 
-  // The other components must lie at or below the point's horizontal plane: the method may be
-  // valid from height z (metres; the evaluated point, after its surface offset). The rest is
-  // checked per point by the method: the point must be outside every column solid, and at or
-  // above the floor of every column solid it does not find wholly hidden.
+  // The triangles of the other components (open, non-manifold, overhanging, …) and their BVH:
+  // the method requires each to be at or below the point's horizontal plane or wholly hidden
+  // below the column solids' horizon (checked per point).
+  std::vector<std::uint32_t> other_triangles;  // in the order of `other_nodes`' leaves
+  std::vector<EdgeBvhNode> other_nodes;        // leaves index other_triangles
+
+  // Above this height (metres) no other component rises: there the method never declines for
+  // them (it may still decline inside or under a column solid, or below a floating one).
   bool valid_from_height(double z) const { return z >= max_other_z; }
 };
 

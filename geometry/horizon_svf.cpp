@@ -438,6 +438,35 @@ struct HorizonSvf::Impl {
     return hidden_below(lo, hi, bound);
   }
 
+  // Is every triangle of the other components at or below p's horizontal plane, or hidden below
+  // the final envelope (then it can only occlude sky the column solids already hide)? Its highest
+  // elevation is at most atan(max z / distance to its xy box), over the azimuth range of its
+  // vertices (p outside the box); a triangle over p's xy box that rises above p is not hidden.
+  bool others_hidden() {
+    if (columns.valid_from_height(p.z())) return true;  // none rises above p
+    const auto& nodes = columns.other_nodes;
+    const auto& soup = scene.soup();
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const EdgeBvhNode& node = nodes[stack.back()];
+      stack.pop_back();
+      if (node_hidden(node.box)) continue;
+      if (node.count == 0) {
+        stack.push_back(node.first);
+        stack.push_back(node.first + 1);
+        continue;
+      }
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+        const auto& tri = soup.triangles[columns.other_triangles[k]];
+        Aabb box;
+        for (std::uint32_t v : tri) box.extend(soup.vertices[v]);
+        if (!node_hidden(box)) return false;
+      }
+    }
+    return true;
+  }
+
   static double node_distance2(const Aabb& box, const Vec3& p) {
     const double dx = std::max({box.lo.x() - p.x(), p.x() - box.hi.x(), 0.0});
     const double dy = std::max({box.lo.y() - p.y(), p.y() - box.hi.y(), 0.0});
@@ -449,7 +478,6 @@ struct HorizonSvf::Impl {
     triangle_tests = 0;
     if (!(n.z() >= 0)) return false;
     p = q.position + offset_m * n;
-    if (!columns.valid_from_height(p.z())) return false;
 
     circle.assign(2, {0.0, 0.0});
     pieces.assign(1, Piece{0.0, 1.0, 0.0, kHorizon, 0.0, 0.0});
@@ -488,6 +516,8 @@ struct HorizonSvf::Impl {
         stack.push_back(left_first ? l : r);
       }
     }
+
+    if (!others_hidden()) return false;
 
     if (!occluded_any) {
       // The open sky in front of the face in closed form: SVF (1 + sin β)/2, exposure 1/2 + β/π.

@@ -328,3 +328,34 @@ BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
     BOOST_TEST(std::abs(e_sky - band) < 1e-4 * std::max(1.0, band), "point " << i << ": fan " << e_sky << " bands " << band);
   }
 }
+
+BOOST_AUTO_TEST_CASE(other_components_hidden_behind_column_solids_do_not_matter) {
+  // A long tall wall (a column solid) and, behind it, an open box (its roof removed: not a column
+  // solid) lower than the wall: from in front of the wall the open box is wholly below the
+  // horizon the wall makes, so the method is valid there and exact (union oracle); from behind
+  // the wall, where the open box shows, it declines (and the band method runs).
+  TriangleSoup soup;
+  append_box(soup, Vec3(-200, 0, 0), Vec3(200, 2, 30));
+  TriangleSoup open;
+  append_box(open, Vec3(-5, 20, 0), Vec3(5, 30, 10));
+  open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);  // as in classification_of_components
+  soup.append(open);
+  const Scene scene(soup);
+  const ColumnScene& c = scene.column_scene();
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.other_components == 1u);
+  BOOST_TEST(!c.valid_from_height(0.0));
+  HorizonSvf h(scene, c, 1e-6);
+  SkyFactors f;
+  for (const QueryPoint& q : {QueryPoint{Vec3(0, -10, 0), Vec3(0, 0, 1)}, QueryPoint{Vec3(3, -1, 4), Vec3(0, -1, 0)},
+                              QueryPoint{Vec3(-20, -30, 1), unit_normal(0.7, 1.0)}}) {
+    BOOST_TEST_REQUIRE(h.compute(q, f));
+    const double exact = svf_union_oracle(q.position + 1e-6 * q.normal, q.normal, soup);
+    BOOST_TEST(std::abs(f.svf - exact) < kExact, "horizon " << f.svf << " exact " << exact);
+  }
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(0, 15, 0), Vec3(0, 0, 1)}, f));  // sees the open box
+  const std::vector<QueryPoint> pts = {{Vec3(0, -10, 0), Vec3(0, 0, 1)}, {Vec3(0, 15, 0), Vec3(0, 0, 1)}};
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(run.by_horizon == 1u);
+  BOOST_TEST(run.by_bands == 1u);
+}
