@@ -81,7 +81,7 @@ struct HorizonSvf::Impl {
   std::vector<Piece> scratch;
   std::array<double, kBins> bin_min{};
   std::vector<std::uint32_t> stack;
-  std::size_t triangle_tests = 0;
+  std::size_t edge_tests = 0;
   bool occluded_any = false;
 
   Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
@@ -89,11 +89,6 @@ struct HorizonSvf::Impl {
   double value(std::uint32_t c, double wx, double wy) const {
     if (c == kBlocked) return kInf;
     return circle[c][0] * wx + circle[c][1] * wy;  // the horizon's coefficients are (0, 0)
-  }
-  double value_at(std::uint32_t c, double t) const {
-    double wx, wy;
-    direction_of(t, wx, wy);
-    return value(c, wx, wy);
   }
   double piece_end(std::size_t i) const { return i + 1 < pieces.size() ? pieces[i + 1].t0 : 4.0; }
 
@@ -378,7 +373,7 @@ struct HorizonSvf::Impl {
   bool add_edge(const SilhouetteEdge& e) {
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
     if (e.floor_z > p.z()) return false;
-    ++triangle_tests;
+    ++edge_tests;
     int o2 = 2;  // orient2d(a, b, p), computed once if a face is vertical
     const auto side = [&](int k) {
       switch (e.face_kind[k]) {
@@ -410,7 +405,8 @@ struct HorizonSvf::Impl {
     return true;
   }
 
-  // Conservative: true when every triangle under the node is hidden or below the horizon.
+  // Conservative: true when everything inside the box is at or below p's horizontal plane or hidden
+  // below the envelope over the box's azimuth range.
   bool node_hidden(const Aabb& box) const {
     if (box.hi.z() <= p.z()) return true;
     const double x0 = box.lo.x() - p.x(), x1 = box.hi.x() - p.x();
@@ -475,7 +471,7 @@ struct HorizonSvf::Impl {
 
   bool compute(const QueryPoint& q, SkyFactors& out) {
     const Vec3& n = q.normal;
-    triangle_tests = 0;
+    edge_tests = 0;
     if (!(n.z() >= 0)) return false;
     p = q.position + offset_m * n;
 
@@ -609,7 +605,7 @@ HorizonSvf::HorizonSvf(const Scene& scene, const ColumnScene& columns, double su
     : impl_(std::make_unique<Impl>(scene, columns, surface_offset_m)) {}
 HorizonSvf::~HorizonSvf() = default;
 bool HorizonSvf::compute(const QueryPoint& q, SkyFactors& out) { return impl_->compute(q, out); }
-std::size_t HorizonSvf::last_triangle_tests() const { return impl_->triangle_tests; }
+std::size_t HorizonSvf::last_edge_tests() const { return impl_->edge_tests; }
 std::size_t HorizonSvf::last_envelope_pieces() const { return impl_->pieces.size(); }
 
 }  // namespace skyband

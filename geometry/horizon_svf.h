@@ -51,7 +51,7 @@ class HorizonSvf {
   void visible_fan(std::vector<SkyFanTriangle>& out) const;
 
   // Statistics of the last compute() (benchmarks).
-  std::size_t last_triangle_tests() const;
+  std::size_t last_edge_tests() const;       // silhouette candidates tested (not culled by their node)
   std::size_t last_envelope_pieces() const;
 
  private:
