@@ -440,25 +440,39 @@ struct HorizonSvf::Impl {
   // vertices (p outside the box); a triangle over p's xy box that rises above p is not hidden.
   bool others_hidden() {
     if (columns.valid_from_height(p.z())) return true;  // none rises above p
-    const auto& nodes = columns.other_nodes;
     const auto& soup = scene.soup();
+    return walk(columns.other_nodes, false, [&](std::uint32_t k) {
+      Aabb box;
+      for (std::uint32_t v : soup.triangles[columns.other_triangles[k]]) box.extend(soup.vertices[v]);
+      return node_hidden(box);
+    });
+  }
+
+  // Walks a BVH, skipping nodes hidden below the envelope, calling leaf_item(k) for the items of
+  // the leaves reached until one returns false (then false). `ordered`: push the child that can
+  // rise highest ((z_max − z_p)/horizontal distance) to be visited first.
+  template <class LeafItem>
+  bool walk(const std::vector<EdgeBvhNode>& nodes, bool ordered, LeafItem&& leaf_item) {
+    if (nodes.empty()) return true;
     stack.clear();
     stack.push_back(0);
     while (!stack.empty()) {
       const EdgeBvhNode& node = nodes[stack.back()];
       stack.pop_back();
       if (node_hidden(node.box)) continue;
-      if (node.count == 0) {
-        stack.push_back(node.first);
-        stack.push_back(node.first + 1);
+      if (node.count > 0) {
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+          if (!leaf_item(k)) return false;
         continue;
       }
-      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-        const auto& tri = soup.triangles[columns.other_triangles[k]];
-        Aabb box;
-        for (std::uint32_t v : tri) box.extend(soup.vertices[v]);
-        if (!node_hidden(box)) return false;
-      }
+      const std::uint32_t l = node.first, r = node.first + 1;
+      const auto key = [&](const Aabb& b) {  // −(bound²)
+        const double d2 = node_distance2(b, p), dz = b.hi.z() - p.z();
+        return d2 > 0 ? -(dz * std::abs(dz)) / d2 : -1e300;
+      };
+      const bool left_first = !ordered || key(nodes[l].box) <= key(nodes[r].box);
+      stack.push_back(left_first ? r : l);  // the other child below the first
+      stack.push_back(left_first ? l : r);
     }
     return true;
   }
@@ -489,29 +503,8 @@ struct HorizonSvf::Impl {
     }
 
     if (under_a_triangle()) return false;
-    const auto& nodes = columns.edge_nodes;
-    if (!nodes.empty()) {
-      stack.clear();
-      stack.push_back(0);
-      while (!stack.empty()) {
-        const EdgeBvhNode& node = nodes[stack.back()];
-        stack.pop_back();
-        if (node_hidden(node.box)) continue;
-        if (node.count > 0) {
-          for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
-            if (!add_edge(columns.edges[k])) return false;
-          continue;
-        }
-        const std::uint32_t l = node.first, r = node.first + 1;
-        const auto key = [&](const Aabb& b) {  // −(bound²): the child that can rise highest first
-          const double d2 = node_distance2(b, p), dz = b.hi.z() - p.z();
-          return d2 > 0 ? -(dz * std::abs(dz)) / d2 : -1e300;
-        };
-        const bool left_first = key(nodes[l].box) <= key(nodes[r].box);
-        stack.push_back(left_first ? r : l);  // far child below the near one
-        stack.push_back(left_first ? l : r);
-      }
-    }
+    // The silhouette candidates, the child that can rise highest first.
+    if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(columns.edges[k]); })) return false;
 
     if (!others_hidden()) return false;
 
