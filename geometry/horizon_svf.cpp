@@ -81,11 +81,7 @@ struct HorizonSvf::Impl {
   std::vector<Piece> scratch;
   std::array<double, kBins> bin_min{};
   std::vector<std::uint32_t> stack;
-  struct HeapItem {
-    double k;
-    std::uint32_t node;
-  };
-  std::vector<HeapItem> heap;
+  std::array<std::vector<std::uint32_t>, 64> buckets;
   std::size_t edge_tests = 0;
   bool occluded_any = false;
 
@@ -458,9 +454,9 @@ struct HorizonSvf::Impl {
   // rise highest ((z_max − z_p)/horizontal distance) to be visited first.
   // Walks a BVH, skipping nodes hidden below the envelope, calling leaf_item(k) for the items of
   // the leaves reached until one returns false (then false). `ordered`: best first — the node that
-  // can rise highest, (z_max − z_p)/horizontal distance, from a binary heap — so that the envelope
-  // rises early and hides the most (−26 % instructions on the 1M-triangle city against
-  // nearer-child-first); otherwise depth first.
+  // can rise highest, (z_max − z_p)/horizontal distance — so that the envelope rises early and
+  // hides the most (−33 % instructions on the 1M-triangle city against nearer-child-first);
+  // otherwise depth first.
   template <class LeafItem>
   bool walk(const std::vector<EdgeBvhNode>& nodes, bool ordered, LeafItem&& leaf_item) {
     if (nodes.empty()) return true;
@@ -485,21 +481,32 @@ struct HorizonSvf::Impl {
       }
       return true;
     }
-    const auto key = [&](const Aabb& b) {  // bound², +∞ over p's xy
+    // A bucket queue over the squared bound in half-octaves (64 buckets covering bounds of about
+    // 2⁻¹⁰ … 2⁵, highest first; last in, first out within one): best first up to a factor of √2
+    // in the bound, at O(1) per node — cheaper than a binary heap and as good at raising the
+    // envelope early (measured: −10 % instructions on the 10k city, −11 % on the 1M one).
+    const auto bucket_of = [&](const Aabb& b) {
       const double d2 = node_distance2(b, p), dz = b.hi.z() - p.z();
-      return d2 > 0 ? (dz * std::abs(dz)) / d2 : 1e300;
+      if (!(d2 > 0)) return 63;  // over p's xy: first
+      if (!(dz > 0)) return 0;
+      int e;
+      const double m = std::frexp(dz * dz / d2, &e);  // m ∈ [0.5, 1)
+      return std::clamp(2 * e + (m >= 0.7071067811865476 ? 1 : 0) + 40, 1, 62);
     };
-    const auto lower = [](const HeapItem& x, const HeapItem& y) { return x.k < y.k || (x.k == y.k && x.node > y.node); };
-    heap.assign(1, HeapItem{key(nodes[0].box), 0});
-    while (!heap.empty()) {
-      std::pop_heap(heap.begin(), heap.end(), lower);
-      const std::uint32_t index = heap.back().node;
-      heap.pop_back();
-      const bool ok = visit(index, [&](std::uint32_t c) {
-        heap.push_back({key(nodes[c].box), c});
-        std::push_heap(heap.begin(), heap.end(), lower);
-      });
-      if (!ok) return false;
+    for (int k = 0; k < 64; ++k) buckets[k].clear();
+    std::uint64_t filled = 0;
+    const auto push = [&](std::uint32_t c) {
+      const int k = bucket_of(nodes[c].box);
+      buckets[k].push_back(c);
+      filled |= std::uint64_t(1) << k;
+    };
+    push(0);
+    while (filled) {
+      const int k = 63 - __builtin_clzll(filled);
+      const std::uint32_t index = buckets[k].back();
+      buckets[k].pop_back();
+      if (buckets[k].empty()) filled &= ~(std::uint64_t(1) << k);
+      if (!visit(index, push)) return false;
     }
     return true;
   }
