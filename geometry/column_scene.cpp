@@ -7,41 +7,13 @@
 #include <tuple>
 #include <vector>
 
+#include "geometry/disjoint_sets.h"
 #include "geometry/exact_sign.h"
+#include "geometry/welding.h"
 
 namespace skyband {
 
 namespace {
-
-// Union–find over triangles.
-struct Components {
-  std::vector<std::uint32_t> parent;
-  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
-// Welded vertex id per stored vertex: exactly equal positions (+0 and −0 equal) share one id.
-std::vector<std::uint32_t> weld(const std::vector<Vec3>& v) {
-  std::vector<std::uint32_t> order(v.size());
-  std::iota(order.begin(), order.end(), 0u);
-  const auto key = [&](std::uint32_t i) { return std::make_tuple(v[i].x(), v[i].y(), v[i].z()); };
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
-  std::vector<std::uint32_t> id(v.size());
-  std::uint32_t next = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (k > 0 && key(order[k]) != key(order[k - 1])) ++next;
-    id[order[k]] = next;
-  }
-  return id;
-}
 
 struct DirectedEdge {
   std::uint32_t lo, hi;  // welded ids, lo < hi
@@ -211,17 +183,17 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   ColumnScene out;
   const std::size_t nt = soup.triangles.size();
   if (nt == 0) return out;
-  const std::vector<std::uint32_t> wid = weld(soup.vertices);
+  const std::vector<std::uint32_t> wid = weld_positions(soup.vertices);
 
   // Triangles sharing a welded vertex belong to one component.
-  Components comp(nt);
+  DisjointSets comp(nt);
   {
     std::vector<std::uint32_t> first_triangle(soup.vertices.size(), UINT32_MAX);
     for (std::uint32_t t = 0; t < nt; ++t)
       for (std::uint32_t vi : soup.triangles[t]) {
         std::uint32_t& f = first_triangle[wid[vi]];
         if (f == UINT32_MAX) f = t;
-        else comp.join(f, t);
+        else comp.unite(f, t);
       }
   }
   std::vector<std::uint32_t> root(nt);

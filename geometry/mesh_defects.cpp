@@ -4,48 +4,15 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
-#include <numeric>
-#include <unordered_map>
 #include <vector>
+
+#include "geometry/disjoint_sets.h"
+#include "geometry/welding.h"
 
 namespace skyband {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-struct PositionKey {
-  std::array<std::uint64_t, 3> bits;
-  bool operator==(const PositionKey&) const = default;
-};
-struct PositionKeyHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (const std::uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull ^ (b >> 29);
-    return static_cast<std::size_t>(h);
-  }
-};
-
-// Exact equality of doubles as a hashable key: +0 and −0 compare equal, so both map to +0.
-PositionKey key_of(const Vec3& p) {
-  PositionKey k{};
-  for (int i = 0; i < 3; ++i) {
-    const double v = p[i] + 0.0;  // −0 + 0 = +0
-    std::memcpy(&k.bits[static_cast<std::size_t>(i)], &v, sizeof v);
-  }
-  return k;
-}
-
-// Union-find over a small local index range (one vertex's link).
-struct DisjointSets {
-  std::vector<std::uint32_t> parent;
-  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 }  // namespace
 
@@ -79,17 +46,11 @@ MeshDefects analyse_defects(const TriangleSoup& soup) {
   const std::size_t nv = soup.vertices.size();
 
   // Weld exactly equal positions.
-  std::vector<std::uint32_t> weld(nv);
+  const std::vector<std::uint32_t> weld = weld_positions(soup.vertices);
   std::vector<std::uint32_t> multiplicity;
-  {
-    std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> ids;
-    ids.reserve(nv);
-    for (std::size_t i = 0; i < nv; ++i) {
-      auto [it, inserted] = ids.emplace(key_of(soup.vertices[i]), static_cast<std::uint32_t>(multiplicity.size()));
-      if (inserted) multiplicity.push_back(0);
-      weld[i] = it->second;
-      ++multiplicity[it->second];
-    }
+  for (const std::uint32_t w : weld) {
+    if (w >= multiplicity.size()) multiplicity.resize(w + 1, 0);
+    ++multiplicity[w];
   }
   d.welded_vertices = multiplicity.size();
   for (const std::uint32_t m : multiplicity)
