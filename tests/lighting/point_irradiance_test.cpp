@@ -31,6 +31,29 @@ TriangleSoup cube() {
 
 QueryPoint at(double x, double y, double z, Vec3 n = Vec3(0, 0, 1)) { return QueryPoint{Vec3(x, y, z), n.normalized()}; }
 
+// Random boxes standing on z = 0 (corners in a square of side box_span_m, sizes 3–11 × 3–11 ×
+// 2–22 m) and points up to 6 m high in a square of side point_span_m with random upward-ish
+// normals; deterministic per seed.
+struct RandomBlock {
+  TriangleSoup soup;
+  std::vector<QueryPoint> points;
+};
+RandomBlock random_block(std::uint64_t seed, int boxes, double box_span_m, int points, double point_span_m) {
+  RandomBlock b;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < boxes; ++i) {
+    const Vec3 lo(box_span_m * (u(rng) - 0.5), box_span_m * (u(rng) - 0.5), 0);
+    append_box(b.soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
+  }
+  for (int i = 0; i < points; ++i) {
+    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
+    const double x = point_span_m * (u(rng) - 0.5), y = point_span_m * (u(rng) - 0.5);
+    b.points.push_back(at(x, y, 6 * u(rng), n));
+  }
+  return b;
+}
+
 }  // namespace
 
 // CIE standard overcast sky, L = L_z(1 + 2 sin e)/3 (e = elevation): closed forms
@@ -76,19 +99,9 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
 // ~1e-13; what remains is the grid's float storage (~6e-8 relative) and the interval ends stored
 // as float. Exact horizon: the SVF is exact, the fan's quadrature within ~3e-6 (geometry/sky_fan.h).
 BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
-  TriangleSoup soup;
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < 12; ++i) {
-    const Vec3 lo(60 * u(rng) - 30, 60 * u(rng) - 30, 0);
-    append_box(soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
-  }
-  const Scene scene(soup);
-  std::vector<QueryPoint> pts;
-  for (int i = 0; i < 40; ++i) {
-    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
-    pts.push_back(at(70 * u(rng) - 35, 70 * u(rng) - 35, 6 * u(rng), n));
-  }
+  const RandomBlock block = random_block(5, 12, 60, 40, 70);
+  const Scene scene(block.soup);
+  const std::vector<QueryPoint>& pts = block.points;
   const SkyModel sky = make_sky(40, 200, "cie-5");
   const double lz = sky.radiance(Vec3(0, 0, 1)).integral_nm();
   BOOST_TEST_REQUIRE(lz > 0);
@@ -112,19 +125,9 @@ BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
 // ≤ 5e-4); the sky irradiance within that plus the two quadratures' (~1e-5 each), relative to the
 // open sky's. Points inside a box go to the band method in both (exact zeros).
 BOOST_AUTO_TEST_CASE(exact_horizon_and_band_method_agree) {
-  TriangleSoup soup;
-  std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < 10; ++i) {
-    const Vec3 lo(50 * u(rng) - 25, 50 * u(rng) - 25, 0);
-    append_box(soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
-  }
-  const Scene scene(soup);
-  std::vector<QueryPoint> pts;
-  for (int i = 0; i < 60; ++i) {
-    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
-    pts.push_back(at(60 * u(rng) - 30, 60 * u(rng) - 30, 6 * u(rng), n));
-  }
+  const RandomBlock block = random_block(9, 10, 50, 60, 60);
+  const Scene scene(block.soup);
+  const std::vector<QueryPoint>& pts = block.points;
   const SkyModel sky = make_sky(20, 230, "multiple");
   PointIrradianceOptions exact, bands;
   bands.method = SkyFactorsMethod::bands;
