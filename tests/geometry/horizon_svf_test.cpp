@@ -36,6 +36,31 @@ bool inside_footprint(const OrientedBox& b, const Vec3& p, double margin) {
 
 Vec3 unit_normal(double tilt, double az) { return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)); }
 
+// The band method as a reference: 4096 fixed bands, no refinement, no axis tail.
+VisibilityOptions fine_bands() {
+  VisibilityOptions fine;
+  fine.bands = 4096;
+  fine.tolerance = 0;
+  fine.axis_tail_rad = 0;
+  return fine;
+}
+
+// `count` random points within 12 m of the origin, up to 4 m high, outside the boxes' footprints
+// (5 cm margin), with random normals up to horizontal; the first `horizontal` of them face up.
+std::vector<QueryPoint> points_around(const std::vector<OrientedBox>& boxes, std::uint64_t seed, std::size_t count,
+                                      std::size_t horizontal) {
+  std::vector<QueryPoint> pts;
+  gen::Rng rng(seed);
+  while (pts.size() < count) {
+    QueryPoint q{Vec3(rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)),
+                 unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28))};
+    if (pts.size() < horizontal) q.normal = Vec3(0, 0, 1);
+    if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
+      pts.push_back(q);
+  }
+  return pts;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(classification_of_components) {
@@ -215,18 +240,8 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_band_method_at_many_bands) {
   const Scene scene(gen::boxes_to_soup(boxes));
   const ColumnScene columns = classify_column_scene(scene.soup());
   HorizonSvf h(scene, columns, 1e-6);
-  VisibilityOptions fine;
-  fine.bands = 4096;
-  fine.tolerance = 0;
-  fine.axis_tail_rad = 0;
-  std::vector<QueryPoint> pts;
-  gen::Rng rng(5);
-  while (pts.size() < 12) {
-    QueryPoint q{Vec3(rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)), unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28))};
-    if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
-      pts.push_back(q);
-  }
-  const VisibilityCache cache = compute_visibility(scene, pts, fine, 1);
+  const std::vector<QueryPoint> pts = points_around(boxes, 5, 12, 0);
+  const VisibilityCache cache = compute_visibility(scene, pts, fine_bands(), 1);
   for (std::size_t i = 0; i < pts.size(); ++i) {
     SkyFactors f;
     BOOST_TEST_REQUIRE(h.compute(pts[i], f));
@@ -301,19 +316,8 @@ BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
   const auto boxes = gen::random_boxes(params, 91);
   const Scene scene(gen::boxes_to_soup(boxes));
   HorizonSvf h(scene, scene.column_scene(), 1e-6);
-  VisibilityOptions fine;
-  fine.bands = 4096;
-  fine.tolerance = 0;
-  fine.axis_tail_rad = 0;
-  std::vector<QueryPoint> pts;
-  gen::Rng rng(17);
-  while (pts.size() < 10) {
-    QueryPoint q{Vec3(rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)), unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28))};
-    if (pts.size() < 3) q.normal = Vec3(0, 0, 1);
-    if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
-      pts.push_back(q);
-  }
-  const VisibilityCache cache = compute_visibility(scene, pts, fine, 1);
+  const std::vector<QueryPoint> pts = points_around(boxes, 17, 10, 3);
+  const VisibilityCache cache = compute_visibility(scene, pts, fine_bands(), 1);
   const auto sky = [](const Vec3& w) { return 1.0 + 2.0 * w.z() + w.x() * w.x() - 0.5 * w.y(); };  // > 0 on the upper hemisphere
   std::vector<SkyFanTriangle> fan;
   for (std::size_t i = 0; i < pts.size(); ++i) {
