@@ -10,6 +10,7 @@
 #include <cmath>
 #include <span>
 
+#include "geometry/gauss_legendre.h"
 #include "geometry/vec3.h"
 
 namespace skyband {
@@ -24,8 +25,6 @@ struct SkyFanTriangle {
 // weight (radians). Triangles without an azimuth range are skipped.
 template <class F>
 void for_each_fan_azimuth_node(std::span<const SkyFanTriangle> fan, double max_step_rad, F&& f) {
-  static constexpr double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
   constexpr double kHalfPi = 1.57079632679489661923;
   for (const SkyFanTriangle& t : fan) {
     const Vec3 m = t.a.cross(t.b);
@@ -37,10 +36,10 @@ void for_each_fan_azimuth_node(std::span<const SkyFanTriangle> fan, double max_s
     const double hp = (phi1 - phi0) / np;
     for (int p = 0; p < np; ++p)
       for (int g = 0; g < 4; ++g) {
-        const double phi = phi0 + hp * (p + 0.5 * (1 + xg[g]));
+        const double phi = phi0 + hp * (p + 0.5 * (1 + kGauss4Nodes[g]));
         const double cp = std::cos(phi), sp = std::sin(phi);
         const double e0 = std::clamp(std::atan(-(m.x() * cp + m.y() * sp) / m.z()), 0.0, kHalfPi);
-        f(phi, cp, sp, e0, 0.5 * hp * wg[g]);
+        f(phi, cp, sp, e0, 0.5 * hp * kGauss4Weights[g]);
       }
   }
 }
@@ -56,8 +55,6 @@ void for_each_fan_azimuth_node(std::span<const SkyFanTriangle> fan, double max_s
 template <int N, class RadianceInto>
 void integrate_fan_channels(std::span<const SkyFanTriangle> fan, const Vec3& n, RadianceInto&& radiance_into, double* out,
                             double max_step_rad = 0.2) {
-  static constexpr double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
   constexpr double kHalfPi = 1.57079632679489661923;
   for (int k = 0; k < N; ++k) out[k] = 0;
   double c[N];
@@ -66,13 +63,13 @@ void integrate_fan_channels(std::span<const SkyFanTriangle> fan, const Vec3& n, 
     const double he = (kHalfPi - e0) / ne;
     for (int q = 0; q < ne; ++q)
       for (int g2 = 0; g2 < 4; ++g2) {
-        const double e = e0 + he * (q + 0.5 * (1 + xg[g2]));
+        const double e = e0 + he * (q + 0.5 * (1 + kGauss4Nodes[g2]));
         const double ce = std::cos(e), se = std::sin(e);
         const Vec3 w(ce * cp, ce * sp, se);
         const double cosn = std::max(0.0, n.dot(w));
         if (cosn == 0) continue;
         radiance_into(w, c);
-        const double wt = wp * 0.5 * he * wg[g2] * ce * cosn;
+        const double wt = wp * 0.5 * he * kGauss4Weights[g2] * ce * cosn;
         for (int k = 0; k < N; ++k) out[k] += wt * c[k];
       }
   });

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/gauss_legendre.h"
 #include "geometry/visibility_cache.h"
 
 namespace skyband {
@@ -34,9 +35,6 @@ double sky_exposure(const PointVisibilityView& v);
 template <int N, class RadianceInto>
 void integrate_irradiance_channels(const PointVisibilityView& v, RadianceInto&& radiance_into, double* out,
                                    double max_step_rad = 0.05) {
-  // 4-point Gauss–Legendre nodes/weights on [−1, 1].
-  static constexpr double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
   const BandFrame& f = v.frame();
   for (int k = 0; k < N; ++k) out[k] = 0;
   double line[N], c[N];
@@ -51,10 +49,10 @@ void integrate_irradiance_channels(const PointVisibilityView& v, RadianceInto&& 
       const double ch = std::cos(h), sh = std::sin(h);
       double cs[4], sn[4], w[4];
       for (int g = 0; g < 4; ++g) {
-        const double a = a0 + 0.5 * h * (1 + xg[g]);
+        const double a = a0 + 0.5 * h * (1 + kGauss4Nodes[g]);
         cs[g] = std::cos(a);
         sn[g] = std::sin(a);
-        w[g] = 0.5 * h * wg[g];
+        w[g] = 0.5 * h * kGauss4Weights[g];
       }
       for (int p = 0; p < pieces; ++p) {
         for (int g = 0; g < 4; ++g) {

@@ -5,16 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/gauss_legendre.h"
 #include "geometry/input_error.h"
 #include "geometry/sky_integral.h"
 
 namespace skyband {
-
-namespace {
-// 4-point Gauss–Legendre on [−1, 1].
-constexpr double kXg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-constexpr double kWg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-}  // namespace
 
 SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky,
                int alpha_cells)
@@ -32,10 +27,10 @@ SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, 
     for (int j = 0; j < cells_; ++j) {
       const double mid = (j + 0.5) * step_rad_;
       for (int g = 0; g < 4; ++g) {
-        const double a = mid + 0.5 * step_rad_ * kXg[g];
+        const double a = mid + 0.5 * step_rad_ * kGauss4Nodes[g];
         const double s = std::sin(a);
         sky(frame.direction(a, delta), radiance);
-        const double k = 0.5 * step_rad_ * kWg[g] * s * s;
+        const double k = 0.5 * step_rad_ * kGauss4Weights[g] * s * s;
         for (int i = 0; i < kSpectrumSamples; ++i) acc[i] += k * radiance[i];
       }
       std::copy(acc.v.begin(), acc.v.end(), out + static_cast<std::size_t>(j + 1) * kSpectrumSamples);
