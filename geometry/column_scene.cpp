@@ -41,15 +41,19 @@ bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const 
 // longest axis), then, inside a solid with more than 4 edges, over its edges the same way; leaves
 // hold ≤ 4 edges of one solid, so a leaf's box is (part of) one building's. Deterministic,
 // O(n log n); `edges` is reordered (grouped by solid, then into leaf order).
-void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
-  std::vector<SilhouetteEdge>& edges = out.edges;
+struct Candidate {
+  SilhouetteEdge edge;
+  std::array<Vec3, 2> c;  // the faces' third vertices
+};
+
+void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, std::vector<std::uint32_t>& edge_solid) {
   out.edge_nodes.clear();
   if (edges.empty()) return;
   {  // group the edges by solid (stable: the order within a solid is kept)
     std::vector<std::uint32_t> order(edges.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return edge_solid[x] < edge_solid[y]; });
-    std::vector<SilhouetteEdge> sorted(edges.size());
+    std::vector<Candidate> sorted(edges.size());
     std::vector<std::uint32_t> sorted_solid(edges.size());
     for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = edges[order[i]], sorted_solid[i] = edge_solid[order[i]];
     edges.swap(sorted);
@@ -64,8 +68,8 @@ void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
     std::uint32_t j = i;
     Group g{i, 0, {}};
     while (j < edges.size() && edge_solid[j] == edge_solid[i]) {
-      g.box.extend(edges[j].a);
-      g.box.extend(edges[j].b);
+      g.box.extend(edges[j].edge.a);
+      g.box.extend(edges[j].edge.b);
       ++j;
     }
     g.count = j - i;
@@ -92,9 +96,9 @@ void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
         box.extend(groups[i].box);
         centres.extend(groups[i].box.centre());
       } else {
-        box.extend(edges[i].a);
-        box.extend(edges[i].b);
-        centres.extend(0.5 * (edges[i].a + edges[i].b));
+        box.extend(edges[i].edge.a);
+        box.extend(edges[i].edge.b);
+        centres.extend(0.5 * (edges[i].edge.a + edges[i].edge.b));
       }
     }
     out.edge_nodes[task.node].box = box;
@@ -113,7 +117,8 @@ void build_edge_bvh(ColumnScene& out, std::vector<std::uint32_t>& edge_solid) {
       });
     } else {
       auto begin = edges.begin() + task.first;
-      std::nth_element(begin, begin + half, begin + task.count, [&](const SilhouetteEdge& x, const SilhouetteEdge& y) {
+      std::nth_element(begin, begin + half, begin + task.count, [&](const Candidate& cx_, const Candidate& cy_) {
+        const SilhouetteEdge &x = cx_.edge, &y = cy_.edge;
         const double cx = 0.5 * (x.a[axis] + x.b[axis]), cy = 0.5 * (y.a[axis] + y.b[axis]);
         if (cx != cy) return cx < cy;
         return std::tie(x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2]) < std::tie(y.a[0], y.a[1], y.a[2], y.b[0], y.b[1], y.b[2]);
@@ -268,13 +273,16 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   // Silhouette candidates (the two triangles of each edge of a closed column solid are
   // consecutive after the sort).
   std::vector<std::uint32_t> edge_solid;
+  std::vector<Candidate> candidates;
   for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
     const DirectedEdge &e = edges[i], &f = edges[i + 1];
     if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
     ++i;
     const auto& te = soup.triangles[e.triangle];
     const auto& tf = soup.triangles[f.triangle];
-    SilhouetteEdge s;
+    Candidate candidate;
+    SilhouetteEdge& s = candidate.edge;
+    std::array<Vec3, 2>& c3 = candidate.c;
     // Ends by welded id: e traverses v_side → v_side+1; forward means lo → hi.
     const Vec3& e0 = soup.vertices[te[e.side]];
     const Vec3& e1 = soup.vertices[te[(e.side + 1) % 3]];
@@ -283,11 +291,11 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
     if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
     s.floor_z = state[e.component].z_min;
-    s.c[0] = soup.vertices[te[(e.side + 2) % 3]];
-    s.c[1] = soup.vertices[tf[(f.side + 2) % 3]];
+    c3[0] = soup.vertices[te[(e.side + 2) % 3]];
+    c3[1] = soup.vertices[tf[(f.side + 2) % 3]];
     // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):
     // never a silhouette. (Coplanar on the same side is a zero-thickness fin: kept.)
-    if (exact_orientation(s.a, s.b, s.c[0], s.c[1]) == 0 && opposite_sides_in_plane(s.a, s.b, s.c[0], s.c[1])) continue;
+    if (exact_orientation(s.a, s.b, c3[0], c3[1]) == 0 && opposite_sides_in_plane(s.a, s.b, c3[0], c3[1])) continue;
     // det[a − p, b − p, c − p] is the triangle's orientation when (a, b, c) follows its winding
     // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
     // winding normal's side; the outward sign turns that into "front-facing".
@@ -295,7 +303,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     s.facing_sign[0] = std::int8_t(-out_sign * (e.forward ? 1 : -1));
     s.facing_sign[1] = std::int8_t(-out_sign * (f.forward ? 1 : -1));
     for (int k = 0; k < 2; ++k) {
-      const Vec3& c = s.c[k];
+      const Vec3& c = c3[k];
       s.face_kind[k] = SilhouetteEdge::kGeneral;
       s.kind_sign[k] = 0;
       const int o2 = exact_orient2d_sign(s.a, s.b, c);
@@ -314,10 +322,14 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
         }
       }
     }
-    out.edges.push_back(s);
+    candidates.push_back(candidate);
     edge_solid.push_back(e.component);
   }
-  build_edge_bvh(out, edge_solid);
+  build_edge_bvh(out, candidates, edge_solid);
+  for (const Candidate& c : candidates) {
+    out.edges.push_back(c.edge);
+    out.edge_third_vertices.push_back(c.c);
+  }
 
   // The other components' triangles, with a median-split BVH (leaves of ≤ 4 triangles).
   for (std::uint32_t t = 0; t < nt; ++t)

@@ -29,19 +29,21 @@
 namespace skyband {
 
 // An edge shared by two faces of a column solid. Seen from a point p outside the solid, face k is
-// front-facing (p on its outer side) when facing_sign[k] · sign(det[a − p, b − p, c[k] − p]) > 0.
-// For horizontal and vertical faces that sign has a cheaper exact form (face_kind, kind_sign):
+// front-facing (p on its outer side) when facing_sign[k] · sign(det[a − p, b − p, c[k] − p]) > 0,
+// c[k] its third vertex (ColumnScene::edge_third_vertices). For horizontal and vertical faces that
+// sign has a cheaper exact form (face_kind, kind_sign), which needs no c:
 //   horizontal (a, b, c[k] at one height): sign(det) = kind_sign[k] · sign(a.z − p.z);
 //   vertical (xy-projection a segment):    sign(det) = kind_sign[k] · orient2d(a, b, p).
-struct SilhouetteEdge {
+// One cache line each: what the per-point walk reads for every edge it reaches.
+struct alignas(64) SilhouetteEdge {
   enum Kind : std::int8_t { kGeneral = 0, kHorizontal = 1, kVertical = 2 };
   Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
-  Vec3 c[2];       // the third vertex of each face
   double floor_z;  // metres, the floor of its column solid
   std::int8_t facing_sign[2];
   std::int8_t face_kind[2];
   std::int8_t kind_sign[2];
 };
+static_assert(sizeof(SilhouetteEdge) == 64);
 
 struct EdgeBvhNode {
   Aabb box;                  // of the edges' ends
@@ -61,6 +63,7 @@ struct ColumnScene {
   // (a point that high sees them at or below its horizon; a point lower than every floor sees
   // the solids' upper edges, and the method declines it), in the order of `edge_nodes`' leaves.
   std::vector<SilhouetteEdge> edges;
+  std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
   std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
 
   // The triangles of the other components (open, non-manifold, overhanging, …) and their BVH:

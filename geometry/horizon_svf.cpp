@@ -104,7 +104,8 @@ struct HorizonSvf::Impl {
   // Returns false when the edge's solid floats above p (its floor is higher): then the sky below
   // the solid may be visible and the method is not valid (decided for every edge not culled, so
   // a floating solid wholly hidden behind grounded ones does not matter).
-  bool add_edge(const SilhouetteEdge& e) {
+  bool add_edge(std::uint32_t index) {
+    const SilhouetteEdge& e = columns.edges[index];
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
     if (e.floor_z > p.z()) return false;
     ++edge_tests;
@@ -115,7 +116,7 @@ struct HorizonSvf::Impl {
         case SilhouetteEdge::kVertical:
           if (o2 == 2) o2 = exact_orient2d_sign(e.a, e.b, p);
           return e.kind_sign[k] * o2;
-        default: return exact_orientation(e.a, e.b, e.c[k], p);
+        default: return exact_orientation(e.a, e.b, columns.edge_third_vertices[index][k], p);
       }
     };
     const int f0 = e.facing_sign[0] * side(0);
@@ -183,13 +184,15 @@ struct HorizonSvf::Impl {
   }
 
   // Walks a BVH, skipping nodes hidden below the envelope, calling leaf_item(k) for the items of
-  // the leaves reached until one returns false (then false). `ordered`: push the child that can
-  // rise highest ((z_max − z_p)/horizontal distance) to be visited first.
-  // Walks a BVH, skipping nodes hidden below the envelope, calling leaf_item(k) for the items of
   // the leaves reached until one returns false (then false). `ordered`: best first — the node that
   // can rise highest, (z_max − z_p)/horizontal distance — so that the envelope rises early and
   // hides the most (−33 % instructions on the 1M-triangle city against nearer-child-first);
   // otherwise depth first.
+  //
+  // The ordered walk is the silhouette edges' (columns.edge_nodes): pushing a node prefetches what
+  // visiting it will read — its children's boxes, or its edges (one cache line each). Loads
+  // missing the cache were about a fifth of the time on the 1M-triangle city; prefetching them
+  // and cutting an edge from 112 to 64 bytes gave +20 % points/s there.
   template <class LeafItem>
   bool walk(const std::vector<EdgeBvhNode>& nodes, bool ordered, LeafItem&& leaf_item) {
     if (nodes.empty()) return true;
@@ -229,7 +232,11 @@ struct HorizonSvf::Impl {
     for (int k = 0; k < 64; ++k) buckets[k].clear();
     std::uint64_t filled = 0;
     const auto push = [&](std::uint32_t c) {
-      const int k = bucket_of(nodes[c].box);
+      const EdgeBvhNode& node = nodes[c];
+      if (node.count == 0) __builtin_prefetch(&nodes[node.first]);
+      else
+        for (std::uint32_t e = node.first; e < node.first + node.count; ++e) __builtin_prefetch(&columns.edges[e]);
+      const int k = bucket_of(node.box);
       buckets[k].push_back(c);
       filled |= std::uint64_t(1) << k;
     };
@@ -268,7 +275,7 @@ struct HorizonSvf::Impl {
 
     if (under_a_triangle()) return false;
     // The silhouette candidates, the node that can rise highest first.
-    if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(columns.edges[k]); })) return false;
+    if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(k); })) return false;
 
     if (!others_hidden()) return false;
 
