@@ -123,10 +123,10 @@ void HorizonEnvelope::insert(std::uint32_t c, double ta, double tb, double wax, 
 
 std::size_t HorizonEnvelope::piece_at(const std::vector<Piece>& pieces, double t) {
   std::size_t lo = 0, n = pieces.size();  // pieces[lo].t0 ≤ t (the first starts at the segment's start)
-  while (n > 1) {
+  while (n > 1) {  // branch-free: the outcome of each step is unpredictable
     const std::size_t half = n / 2;
-    if (pieces[lo + half].t0 <= t) lo += half, n -= half;
-    else n = half;
+    lo = pieces[lo + half].t0 <= t ? lo + half : lo;
+    n -= half;
   }
   return lo;
 }

@@ -233,8 +233,10 @@ struct HorizonSvf::Impl {
     std::uint64_t filled = 0;
     const auto push = [&](std::uint32_t c) {
       const EdgeBvhNode& node = nodes[c];
-      if (node.count == 0) __builtin_prefetch(&nodes[node.first]);
-      else
+      if (node.count == 0) {
+        __builtin_prefetch(&nodes[node.first]);
+        __builtin_prefetch(reinterpret_cast<const char*>(&nodes[node.first + 2]) - 1);  // the pair's last byte
+      } else
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e) __builtin_prefetch(&columns.edges[e]);
       const int k = bucket_of(node.box);
       buckets[k].push_back(c);
