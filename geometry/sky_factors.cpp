@@ -1,12 +1,16 @@
 #include "geometry/sky_factors.h"
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "geometry/column_scene.h"
 #include "geometry/horizon_svf.h"
 #include "geometry/parallel_chunks.h"
+#include "geometry/point_order.h"
 
 namespace skyband {
+
 
 SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
                                   SkyFactorsMethod method, int threads,
@@ -24,10 +28,14 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
 
   // Pass 1: the exact horizon; points where it is not valid are marked.
   std::vector<char> done_by_horizon(points.size(), 0);
+  const std::vector<std::uint32_t> order = xy_morton_order(points);  // cache locality; no result changes
   for_each_in_chunks(
       points.size(), 64, threads, progress,
       [&] { return std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m); },
-      [&](HorizonSvf& horizon, std::size_t i) { done_by_horizon[i] = horizon.compute(points[i], run.factors[i]); });
+      [&](HorizonSvf& horizon, std::size_t k) {
+        const std::size_t i = order[k];
+        done_by_horizon[i] = horizon.compute(points[i], run.factors[i]);
+      });
 
   // Pass 2: the band method on the rest.
   std::vector<QueryPoint> rest;

@@ -10,6 +10,7 @@
 #include "geometry/horizon_svf.h"
 #include "geometry/input_error.h"
 #include "geometry/parallel_chunks.h"
+#include "geometry/point_order.h"
 #include "geometry/sky_fan.h"
 #include "geometry/sky_integral.h"
 #include "lighting/colour.h"
@@ -83,10 +84,12 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
       std::vector<SkyFanTriangle> fan;
       Worker(const Scene& s, const ColumnScene& c, const VisibilityOptions& o) : horizon(s, c, o.surface_offset_m), bands(s, o) {}
     };
+    const std::vector<std::uint32_t> order = xy_morton_order(points);  // cache locality; no result changes
     for_each_in_chunks(
         points.size(), 32, options.threads, progress,
         [&] { return std::make_unique<Worker>(scene, columns, options.visibility); },
-        [&](Worker& w, std::size_t i) {
+        [&](Worker& w, std::size_t k) {
+          const std::size_t i = order[k];
           SkyFactors f;
           if (!w.horizon.compute(points[i], f)) return;
           w.horizon.visible_fan(w.fan);
