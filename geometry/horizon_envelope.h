@@ -95,17 +95,16 @@ class HorizonEnvelope {
   bool hidden_below(double lo, double hi, double bound) const {
     if (hi > 4.0) return hidden_below(lo, 4.0, bound) && hidden_below(0.0, hi - 4.0, bound);
     const int b0 = std::min(kBins - 1, int(lo * kBinsPerUnit)), b1 = std::min(kBins - 1, int(hi * kBinsPerUnit));
+    // The bins wholly inside the range first (a minimum below the bound decides), then the two
+    // end bins, from their pieces where their minimum does not decide.
     for (int g = b0 / kFinePerCoarse; g <= b1 / kFinePerCoarse; ++g) {
       if (coarse_min_[g] >= bound) continue;
-      const int f0 = std::max(b0, g * kFinePerCoarse), f1 = std::min(b1, g * kFinePerCoarse + kFinePerCoarse - 1);
-      for (int b = f0; b <= f1; ++b) {
-        if (bin_min_[b] >= bound) continue;
-        if (b != b0 && b != b1) return false;  // wholly inside the range
-        if (!bin_at_least(b, std::max(lo, double(b) / kBinsPerUnit), std::min(hi, double(b + 1) / kBinsPerUnit), bound))
-          return false;
-      }
+      const int f0 = std::max(b0 + 1, g * kFinePerCoarse), f1 = std::min(b1 - 1, g * kFinePerCoarse + kFinePerCoarse - 1);
+      for (int b = f0; b <= f1; ++b)
+        if (bin_min_[b] < bound) return false;
     }
-    return true;
+    if (bin_min_[b0] < bound && !bin_at_least(b0, lo, std::min(hi, double(b0 + 1) / kBinsPerUnit), bound)) return false;
+    return b1 == b0 || bin_min_[b1] >= bound || bin_at_least(b1, double(b1) / kBinsPerUnit, hi, bound);
   }
 
   // Calls f(t0, t1, circle) for the envelope's maximal runs of one circle, in order of t from 0
