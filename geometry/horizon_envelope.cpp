@@ -132,29 +132,37 @@ std::size_t HorizonEnvelope::piece_at(const std::vector<Piece>& pieces, double t
 }
 
 // Recomputes the exact minima of the fine bins of segment g meeting [lo, hi] from its pieces (a
-// piece's part in a bin has its minimum at one of its ends), and the segment's minimum.
+// piece's part in a bin has its minimum at one of its ends), and the segment's minimum. Piece by
+// piece, each bin edge's value computed once: a near facade's arc spans hundreds of bins.
 void HorizonEnvelope::update_bins(int g, double lo, double hi) {
   const BinEdges& e = bin_edges();
   const std::vector<Piece>& pieces = segments_[g];
   const int first_bin = g * kFinePerCoarse, last_bin = first_bin + kFinePerCoarse - 1;
   const int b0 = std::clamp(int(lo * kBinsPerUnit), first_bin, last_bin);
   const int b1 = std::clamp(int(hi * kBinsPerUnit), first_bin, last_bin);
-  std::size_t i = piece_at(pieces, double(b0) / kBinsPerUnit);
-  for (int b = b0; b <= b1; ++b) {
-    const double s0 = double(b) / kBinsPerUnit, s1 = double(b + 1) / kBinsPerUnit;
-    while (i + 1 < pieces.size() && pieces[i + 1].t0 <= s0) ++i;
-    double m = kInf;
-    for (std::size_t j = i; j < pieces.size() && pieces[j].t0 < s1 && m > 0; ++j) {
-      const Piece& q = pieces[j];
-      if (q.circle == kBlocked) continue;
-      const bool ends_inside = j + 1 < pieces.size() ? pieces[j + 1].t0 <= s1 : b == last_bin;
-      const double left = q.t0 >= s0 ? q.v0 : value(q.circle, e.x[b], e.y[b]);
-      const double right = ends_inside ? q.v1 : value(q.circle, e.x[b + 1], e.y[b + 1]);
-      m = std::min({m, left, right});
+  std::fill(bin_min_.begin() + b0, bin_min_.begin() + b1 + 1, kInf);
+  const double range_end = double(b1 + 1) / kBinsPerUnit;
+  for (std::size_t j = piece_at(pieces, double(b0) / kBinsPerUnit); j < pieces.size() && pieces[j].t0 < range_end; ++j) {
+    const Piece& q = pieces[j];
+    if (q.circle == kBlocked) continue;
+    const double q_end = j + 1 < pieces.size() ? pieces[j + 1].t0 : double(last_bin + 1) / kBinsPerUnit;
+    // The piece's part in the range: from its start (or bin b0's start) to its end (or the range's).
+    const bool starts_inside = q.t0 >= double(b0) / kBinsPerUnit;
+    int b = starts_inside ? int(q.t0 * kBinsPerUnit) : b0;
+    double left = starts_inside ? q.v0 : value(q.circle, e.x[b0], e.y[b0]);
+    for (; b <= b1 && double(b + 1) / kBinsPerUnit < q_end; ++b) {  // bins whose end lies inside the piece
+      const double edge = value(q.circle, e.x[b + 1], e.y[b + 1]);
+      bin_min_[b] = std::min({bin_min_[b], left, edge});
+      left = edge;
     }
-    bin_min_[b] = m;
+    if (b <= b1) bin_min_[b] = std::min({bin_min_[b], left, q.v1});  // the bin holding its end
   }
-  coarse_min_[g] = *std::min_element(bin_min_.begin() + first_bin, bin_min_.begin() + last_bin + 1);
+  // The segment's minimum, in four independent chains (std::min_element is a serial loop).
+  const double* m = bin_min_.data() + first_bin;
+  double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
+  for (int k = 4; k < kFinePerCoarse; k += 4)
+    m0 = std::min(m0, m[k]), m1 = std::min(m1, m[k + 1]), m2 = std::min(m2, m[k + 2]), m3 = std::min(m3, m[k + 3]);
+  coarse_min_[g] = std::min(std::min(m0, m1), std::min(m2, m3));
 }
 
 // Raises segment g's envelope to circle c over [ta, tb] inside the segment.
@@ -165,11 +173,13 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
   const double bin_end = double(end_bin) / kBinsPerUnit;  // the segment's end
   const double end_x = bin_edges().x[end_bin], end_y = bin_edges().y[end_bin];
   const std::size_t first = piece_at(pieces, ta);
-  scratch_.clear();
+  // At most two pieces per piece overlapped, its head and tail, and the neighbours on each side.
+  if (scratch_.size() < 2 * pieces.size() + 4) scratch_.resize(2 * pieces.size() + 4);
+  std::size_t ns = 0;  // pieces in scratch_
   // The new pieces of [lo, hi) go to scratch, starting with the piece before the range (so that
   // it can join the first new one).
   const std::size_t lo = first > 0 ? first - 1 : first;
-  if (first > 0) scratch_.push_back(pieces[first - 1]);
+  if (first > 0) scratch_[ns++] = pieces[first - 1];
   bool changed = false;
   double changed_lo = tb, changed_hi = ta;  // where the envelope rose
   double u0 = ta, w0x = wax, w0y = way;
@@ -183,7 +193,7 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
     double p0 = q.v0;  // the envelope at u0
     if (q.t0 < u0) {   // head outside [ta, tb]
       p0 = value(pc, w0x, w0y);
-      scratch_.push_back({q.t0, q.wx, q.wy, pc, q.v0, p0});
+      scratch_[ns++] = Piece{q.t0, q.wx, q.wy, pc, q.v0, p0};
     }
     double u1, w1x, w1y, p1;  // the overlap's end, and the envelope there
     if (tb < s1) {
@@ -199,9 +209,9 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
     // Both are great-circle arcs over less than π: their difference (linear in the unit
     // direction) changes sign at most once, where the chord between w0 and w1 crosses zero.
     if (!(e0 > 0 || e1 > 0)) {
-      scratch_.push_back({u0, w0x, w0y, pc, p0, p1});
+      scratch_[ns++] = Piece{u0, w0x, w0y, pc, p0, p1};
     } else if (e0 >= 0 && e1 >= 0) {
-      scratch_.push_back({u0, w0x, w0y, c, c0, c1});
+      scratch_[ns++] = Piece{u0, w0x, w0y, c, c0, c1};
       changed = true;
       changed_lo = std::min(changed_lo, u0);
       changed_hi = u1;
@@ -214,19 +224,19 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
       const double tc = std::clamp(diamond_angle(cx, cy), u0, u1);
       const double vc = value(c, cx, cy);  // = the old arc's value there, to rounding
       if (e0 > 0) {
-        scratch_.push_back({u0, w0x, w0y, c, c0, vc});
-        scratch_.push_back({tc, cx, cy, pc, vc, p1});
+        scratch_[ns++] = Piece{u0, w0x, w0y, c, c0, vc};
+        scratch_[ns++] = Piece{tc, cx, cy, pc, vc, p1};
         changed_lo = std::min(changed_lo, u0);
         changed_hi = tc;
       } else {
-        scratch_.push_back({u0, w0x, w0y, pc, p0, vc});
-        scratch_.push_back({tc, cx, cy, c, vc, c1});
+        scratch_[ns++] = Piece{u0, w0x, w0y, pc, p0, vc};
+        scratch_[ns++] = Piece{tc, cx, cy, c, vc, c1};
         changed_lo = std::min(changed_lo, tc);
         changed_hi = u1;
       }
       changed = true;
     }
-    if (u1 < s1) scratch_.push_back({u1, w1x, w1y, pc, p1, q.v1});  // tail outside [ta, tb]
+    if (u1 < s1) scratch_[ns++] = Piece{u1, w1x, w1y, pc, p1, q.v1};  // tail outside [ta, tb]
     u0 = u1;
     w0x = w1x;
     w0y = w1y;
@@ -241,11 +251,11 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
   // Merge: drop empty pieces and join neighbours on the same circle, including the pieces just
   // before and after the replaced range.
   std::size_t hi = j;  // replaced [lo, hi)
-  if (hi < pieces.size()) scratch_.push_back(pieces[hi++]);
+  if (hi < pieces.size()) scratch_[ns++] = pieces[hi++];
   const double final_end = hi < pieces.size() ? pieces[hi].t0 : bin_end;
   std::size_t n = 0;
-  for (std::size_t k = 0; k < scratch_.size(); ++k) {
-    const double end = k + 1 < scratch_.size() ? scratch_[k + 1].t0 : final_end;
+  for (std::size_t k = 0; k < ns; ++k) {
+    const double end = k + 1 < ns ? scratch_[k + 1].t0 : final_end;
     if (end <= scratch_[k].t0) continue;  // empty
     if (n > 0 && scratch_[n - 1].circle == scratch_[k].circle) {
       scratch_[n - 1].v1 = scratch_[k].v1;  // joins the previous

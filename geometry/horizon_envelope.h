@@ -57,7 +57,7 @@ inline void diamond_direction(double t, double& wx, double& wy) {
 
 class HorizonEnvelope {
  public:
-  static constexpr int kFinePerCoarse = 16;
+  static constexpr int kFinePerCoarse = 16;  // a multiple of 4
   static constexpr int kCoarseBins = 64;
   static constexpr int kBins = kCoarseBins * kFinePerCoarse;
   static constexpr double kBinsPerUnit = kBins / 4.0;  // a power of two: bin edges are exact
