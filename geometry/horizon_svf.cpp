@@ -25,7 +25,7 @@ struct HorizonSvf::Impl {
   Vec3 p;  // the evaluated point
   HorizonEnvelope env;
   std::vector<std::uint32_t> stack;
-  std::array<std::vector<std::uint32_t>, 64> buckets;
+  std::array<std::vector<std::uint32_t>, 128> buckets;
   std::size_t edge_tests = 0;
 
   Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
@@ -217,20 +217,21 @@ struct HorizonSvf::Impl {
       }
       return true;
     }
-    // A bucket queue over the squared bound in half-octaves (64 buckets covering bounds of about
-    // 2⁻¹⁰ … 2⁵, highest first; last in, first out within one): best first up to a factor of √2
-    // in the bound, at O(1) per node — cheaper than a binary heap and as good at raising the
-    // envelope early (measured: −10 % instructions on the 10k city, −11 % on the 1M one).
+    // A bucket queue over the squared bound in quarter-octaves (128 buckets covering bounds of
+    // about 2⁻¹⁰ … 2⁵, highest first; last in, first out within one): best first up to a factor
+    // of 2^⅛ in the bound, at O(1) per node — cheaper than a binary heap and as good at raising
+    // the envelope early (measured: −10 % instructions on the 10k city, −11 % on the 1M one, with
+    // half-octaves; quarter-octaves took 2 % less on the 1M city).
     const auto bucket_of = [&](const Aabb& b) {
       const double d2 = node_distance2(b, p), dz = b.hi.z() - p.z();
-      if (!(d2 > 0)) return 63;  // over p's xy: first
+      if (!(d2 > 0)) return 127;  // over p's xy: first
       if (!(dz > 0)) return 0;
-      // The exponent of dz²/d2 and its first mantissa bit: 2·⌊log2⌋ + (mantissa ≥ 1.5).
-      const auto half_octaves = int(std::bit_cast<std::uint64_t>(dz * dz / d2) >> 51);
-      return std::clamp(half_octaves - 2 * 1023 + 42, 1, 62);
+      // The exponent of dz²/d2 and its first two mantissa bits: 4·⌊log2⌋ + ⌊4·(mantissa − 1)⌋.
+      const auto quarter_octaves = int(std::bit_cast<std::uint64_t>(dz * dz / d2) >> 50);
+      return std::clamp(quarter_octaves - 4 * 1023 + 84, 1, 126);
     };
-    for (int k = 0; k < 64; ++k) buckets[k].clear();
-    std::uint64_t filled = 0;
+    for (int k = 0; k < 128; ++k) buckets[k].clear();
+    std::uint64_t filled[2] = {0, 0};
     const auto push = [&](std::uint32_t c) {
       const EdgeBvhNode& node = nodes[c];
       if (node.count == 0) {
@@ -240,14 +241,14 @@ struct HorizonSvf::Impl {
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e) __builtin_prefetch(&columns.edges[e]);
       const int k = bucket_of(node.box);
       buckets[k].push_back(c);
-      filled |= std::uint64_t(1) << k;
+      filled[k >> 6] |= std::uint64_t(1) << (k & 63);
     };
     push(0);
-    while (filled) {
-      const int k = 63 - __builtin_clzll(filled);
+    while (filled[0] | filled[1]) {
+      const int k = filled[1] ? 127 - __builtin_clzll(filled[1]) : 63 - __builtin_clzll(filled[0]);
       const std::uint32_t index = buckets[k].back();
       buckets[k].pop_back();
-      if (buckets[k].empty()) filled &= ~(std::uint64_t(1) << k);
+      if (buckets[k].empty()) filled[k >> 6] &= ~(std::uint64_t(1) << (k & 63));
       if (!visit(index, push)) return false;
     }
     return true;
