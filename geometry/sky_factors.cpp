@@ -30,7 +30,7 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
   std::vector<char> done_by_horizon(points.size(), 0);
   const std::vector<std::uint32_t> order = xy_morton_order(points);  // cache locality; no result changes
   for_each_in_chunks(
-      points.size(), 64, threads, progress,
+      points.size(), 16, threads, progress,
       [&] { return std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m); },
       [&](HorizonSvf& horizon, std::size_t k) {
         const std::size_t i = order[k];
