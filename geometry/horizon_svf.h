@@ -11,10 +11,10 @@
 // angle follows from Lambert's formula (½ Σ Θ_e n·ĝ_e over the boundary arcs) and its solid angle
 // from Van Oosterom and Strackee's triangle formula, both in closed form.
 //
-// The envelope is kept over a pseudo-angle of azimuth as sorted pieces, each one arc; the BVH is
-// walked front to back and nodes wholly below the current envelope (a conservative bound of
-// their highest elevation against a binned minimum of the envelope over their azimuth range) are
-// skipped. Decisions that change the answer's topology are exact: which triangles lie wholly
+// The envelope (geometry/horizon_envelope.h) is kept over a pseudo-angle of azimuth as sorted
+// pieces, each one arc; the BVH is walked best first, the node that can rise highest first, and
+// nodes wholly below the current envelope (a conservative bound of their highest elevation
+// against binned minima of the envelope over their azimuth range) are skipped. Decisions that change the answer's topology are exact: which triangles lie wholly
 // below the point's horizontal (exact comparisons), whether the point is under a triangle
 // (exact orient2d / orient3d). Envelope values are constructions (rounding-level errors, and
 // continuous in them: no decision among nearly equal arcs can change the result by more than
