@@ -5,15 +5,18 @@
 // Azimuth is kept as a "diamond angle" t ∈ [0, 4) (no trigonometry in the hot loop). A great
 // circle through the point that is not vertical is stored by its slope coefficients (a, b): along
 // a unit horizontal direction w its elevation e has tan e = a·w_x + b·w_y. The envelope is a list
-// of pieces, each one circle over a range of t, cut at the edges of 64 segments (coarse bins):
+// of pieces, each one circle over a range of t, cut at the edges of 32 segments (coarse bins):
 // an insertion shifts and searches only the pieces of the segments it covers. Each of 1024 fine
-// bins (16 per segment) keeps the exact minimum of the envelope over it, and each segment the
+// bins (32 per segment) keeps the exact minimum of the envelope over it, and each segment the
 // least of its bins', so a range test reads bin minima first and pieces only in its end bins.
 //
 // Measured on the 1M-triangle city (bench_svf --large-only, callgrind inside HorizonSvf::compute):
 // one global sorted piece list with 64 bins took 1.31M instructions per point; 1024 fine bins in
 // 64 coarse ones, 1.20M; the pieces cut per segment, 1.19M. Pieces cut per fine bin instead took
-// 1.58M: a near facade's insertion then rewrites hundreds of bins.
+// 1.58M: a near facade's insertion then rewrites hundreds of bins. After the later changes of
+// session 6, segments × bins per segment of 64 × 16 / 32 × 32 / 32 × 16 / 16 × 32 / 16 × 64 took
+// 1.05 / 1.04 / 1.09 / 1.09 / 1.08 M instructions per point there, and 233 / 219 / 205 / 201 /
+// 226 k on the 10k city: 32 × 32 is the best for both (+6 % points/s on the 10k city).
 //
 // Exactness: the values are constructions (rounding-level errors, and the result is continuous in
 // them). Range tests are conservative: a piece's minimum over any part of it is at one of the
@@ -57,8 +60,8 @@ inline void diamond_direction(double t, double& wx, double& wy) {
 
 class HorizonEnvelope {
  public:
-  static constexpr int kFinePerCoarse = 16;  // a multiple of 4
-  static constexpr int kCoarseBins = 64;
+  static constexpr int kFinePerCoarse = 32;  // a multiple of 4
+  static constexpr int kCoarseBins = 32;
   static constexpr int kBins = kCoarseBins * kFinePerCoarse;
   static constexpr double kBinsPerUnit = kBins / 4.0;  // a power of two: bin edges are exact
   // Circle ids: 0 the horizon (tan e = 0), 1 "blocked" (no sky: behind a vertical face).
