@@ -25,7 +25,6 @@ SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
   arena.execute([&] {
     tbb::parallel_for(0, kAzimuthCells, [&](int i) {
       const double phi = i * kDphi, cp = std::cos(phi), sp = std::sin(phi);
-      double* col = data_.data() + static_cast<std::size_t>(i) * kNodes * 2 * kChannels;
       double s[kChannels] = {0, 0}, c[kChannels] = {0, 0}, l[kChannels];
       // From the zenith down: node j holds the integrals over [e_j, π/2].
       for (int j = kElevationCells - 1; j >= 0; --j) {
@@ -38,7 +37,7 @@ SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
             c[k] += w * l[k] * ce * ce;
           }
         }
-        double* node = col + static_cast<std::size_t>(j) * 2 * kChannels;
+        double* node = data_.data() + (static_cast<std::size_t>(j) * kAzimuthCells + i) * 2 * kChannels;
         for (int k = 0; k < kChannels; ++k) {
           node[k] = s[k];
           node[kChannels + k] = c[k];
@@ -58,7 +57,7 @@ void SkyColumnTable::lookup(double phi, double e, double s[kChannels], double c[
   const double v = std::clamp(e / kDe, 0.0, double(kElevationCells));
   const int j0 = std::min(static_cast<int>(v), kElevationCells - 1);
   const double fv = v - j0;
-  const auto at = [&](int i, int j) { return data_.data() + (static_cast<std::size_t>(i) * kNodes + j) * 2 * kChannels; };
+  const auto at = [&](int i, int j) { return data_.data() + (static_cast<std::size_t>(j) * kAzimuthCells + i) * 2 * kChannels; };
   const double* a = at(i0, j0);
   const double* b = at(i1, j0);
   const double* cc = at(i0, j0 + 1);

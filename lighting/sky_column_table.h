@@ -37,7 +37,10 @@ class SkyColumnTable {
  private:
   // Bilinear S and C at (φ ∈ ℝ, e ∈ [0, π/2]) for both channels.
   void lookup(double phi, double e, double s[kChannels], double c[kChannels]) const;
-  // [column][elevation node][S0, S1, C0, C1]
+  // [elevation node][column][S0, S1, C0, C1]: elevation-major, so that the look-ups of a point's
+  // azimuth quadrature, which move along azimuth at slowly changing elevations, stay in cache
+  // (column-major, each look-up read two columns 11.5 kB apart: the table is 16.6 MB, and the
+  // look-ups took a third of `skyband irradiance`'s time on the 10k city).
   std::vector<double> data_;
 };
 
