@@ -19,7 +19,7 @@ constexpr double x2[2] = {-0.5773502691896258, 0.5773502691896258};  // ±1/√3
 }  // namespace
 
 SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
-    : data_(static_cast<std::size_t>(kAzimuthCells) * kNodes * 2 * kChannels, 0.0) {
+    : data_(static_cast<std::size_t>(kAzimuthCells) * kNodes * 2 * kChannels, 0.0f) {
   if (grid.channels() != kChannels) throw std::invalid_argument("SkyColumnTable: the sky grid must have 2 channels");
   tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
   arena.execute([&] {
@@ -37,7 +37,7 @@ SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
             c[k] += w * l[k] * ce * ce;
           }
         }
-        double* node = data_.data() + (static_cast<std::size_t>(j) * kAzimuthCells + i) * 2 * kChannels;
+        float* node = data_.data() + (static_cast<std::size_t>(j) * kAzimuthCells + i) * 2 * kChannels;
         for (int k = 0; k < kChannels; ++k) {
           node[k] = s[k];
           node[kChannels + k] = c[k];
@@ -58,10 +58,10 @@ void SkyColumnTable::lookup(double phi, double e, double s[kChannels], double c[
   const int j0 = std::min(static_cast<int>(v), kElevationCells - 1);
   const double fv = v - j0;
   const auto at = [&](int i, int j) { return data_.data() + (static_cast<std::size_t>(j) * kAzimuthCells + i) * 2 * kChannels; };
-  const double* a = at(i0, j0);
-  const double* b = at(i1, j0);
-  const double* cc = at(i0, j0 + 1);
-  const double* d = at(i1, j0 + 1);
+  const float* a = at(i0, j0);
+  const float* b = at(i1, j0);
+  const float* cc = at(i0, j0 + 1);
+  const float* d = at(i1, j0 + 1);
   const double w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv, w11 = fu * fv;
   for (int k = 0; k < kChannels; ++k) {
     s[k] = w00 * a[k] + w10 * b[k] + w01 * cc[k] + w11 * d[k];
