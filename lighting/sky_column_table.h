@@ -35,8 +35,14 @@ class SkyColumnTable {
                      double max_step_rad = 0.05) const;
 
  private:
-  // Bilinear S and C at (φ ∈ ℝ, e ∈ [0, π/2]) for both channels.
-  void lookup(double phi, double e, double s[kChannels], double c[kChannels]) const;
+  // The four table entries around (φ ∈ ℝ, e ∈ [0, π/2]) and the bilinear weights' fractions.
+  struct Cell {
+    const float *a, *b, *c, *d;  // (i0, j0), (i1, j0), (i0, j0 + 1), (i1, j0 + 1)
+    double fu, fv;
+  };
+  Cell cell(double phi, double e) const;
+  // Bilinear S and C in a cell, both channels.
+  static void lookup(const Cell& q, double s[kChannels], double c[kChannels]);
   // [elevation node][column][S0, S1, C0, C1]: elevation-major, so that the look-ups of a point's
   // azimuth quadrature, which move along azimuth at slowly changing elevations, stay in cache
   // (column-major, each look-up read two columns 11.5 kB apart: the table is 16.6 MB, and the
