@@ -2,11 +2,12 @@
 // procedural cities of bench_svf: points/s of the SVF alone and of the irradiance (SVF + sky
 // quadrature + sun shadow test), and the sky quadrature's error against a 4× finer step.
 //
-// Usage: bench_irradiance [--points N] [--quick] [--large] [--max-threads 1|2]
+// Usage: bench_irradiance [--points N] [--quick] [--large] [--max-threads 1|2] [--method auto|bands|both]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The methods to run: "auto", "bands" or "both" (--method).
+std::vector<SkyFactorsMethod> g_methods{SkyFactorsMethod::automatic, SkyFactorsMethod::bands};
+
 void run_city(const char* label, std::size_t triangles, std::size_t n_points, int max_threads) {
   const gen::City city = gen::make_city(gen::city_params_for_triangles(triangles, 2024));
   const Scene scene(city.soup);
@@ -38,7 +42,7 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
   std::printf("| method | threads | svf points/s | irradiance points/s | irradiance / svf time | sun visible |\n");
   std::printf("|--------|---------|--------------|---------------------|-----------------------|-------------|\n");
   (void)scene.column_scene();  // the exact horizon's classification, once per scene (not timed)
-  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands})
+  for (SkyFactorsMethod method : g_methods)
     for (int threads = 1; threads <= max_threads; ++threads) {
       t0 = Clock::now();
       const auto f = compute_sky_factors(scene, pts, VisibilityOptions{}, method, threads);
@@ -86,7 +90,7 @@ void run_city(const char* label, std::size_t triangles, std::size_t n_points, in
   const std::size_t n = std::min<std::size_t>(pts.size(), 400);
   std::vector<QueryPoint> subset(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(n / 2));
   subset.insert(subset.end(), pts.end() - static_cast<std::ptrdiff_t>(n / 2), pts.end());
-  for (SkyFactorsMethod method : {SkyFactorsMethod::automatic, SkyFactorsMethod::bands}) {
+  for (SkyFactorsMethod method : g_methods) {
   PointIrradianceOptions fine;
   fine.max_step_rad = 0.0125;
   fine.threads = 1;
@@ -125,7 +129,11 @@ int main(int argc, char** argv) {
   app.add_flag("--large", large, "also the ~1M-triangle city");
   app.add_flag("--quick", quick, "at most 500 points");
   app.add_option("--max-threads", max_threads, "1: single-thread rows only")->check(CLI::Range(1, 2));
+  std::string method = "both";
+  app.add_option("--method", method, "auto, bands or both (profiling one path)")->check(CLI::IsMember({"auto", "bands", "both"}));
   CLI11_PARSE(app, argc, argv);
+  if (method == "auto") g_methods = {SkyFactorsMethod::automatic};
+  if (method == "bands") g_methods = {SkyFactorsMethod::bands};
   if (quick) points = std::min<std::size_t>(points, 500);
   run_city("city 10k", 10000, points, max_threads);
   if (large) run_city("city 1M", 1000000, points, max_threads);
