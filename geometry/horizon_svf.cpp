@@ -236,7 +236,7 @@ struct HorizonSvf::Impl {
       const EdgeBvhNode& node = nodes[c];
       if (node.count == 0) {
         __builtin_prefetch(&nodes[node.first]);
-        __builtin_prefetch(reinterpret_cast<const char*>(&nodes[node.first + 2]) - 1);  // the pair's last byte
+        __builtin_prefetch(reinterpret_cast<const char*>(nodes.data() + node.first + 2) - 1);  // the pair's last byte
       } else
         for (std::uint32_t e = node.first; e < node.first + node.count; ++e) __builtin_prefetch(&columns.edges[e]);
       const int k = bucket_of(node.box);
