@@ -5,17 +5,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "geometry/exact_sign.h"
 #include "geometry/horizon_envelope.h"
 
 namespace skyband {
-
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
 
 struct HorizonSvf::Impl {
   const Scene& scene;
