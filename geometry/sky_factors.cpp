@@ -38,21 +38,25 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
       });
 
   // Pass 2: the band method on the rest.
-  std::vector<QueryPoint> rest;
-  std::vector<std::size_t> rest_index;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!done_by_horizon[i]) {
-      rest.push_back(points[i]);
-      rest_index.push_back(i);
-    }
-  run.by_bands = rest.size();
-  run.by_horizon = points.size() - rest.size();
-  if (!rest.empty()) {
-    const std::vector<SkyFactors> banded = compute_sky_factors(scene, rest, options, threads);
-    for (std::size_t k = 0; k < rest.size(); ++k) run.factors[rest_index[k]] = banded[k];
+  const PointSubset rest = points_not_done(points, done_by_horizon);
+  run.by_bands = rest.points.size();
+  run.by_horizon = points.size() - rest.points.size();
+  if (!rest.points.empty()) {
+    const std::vector<SkyFactors> banded = compute_sky_factors(scene, rest.points, options, threads);
+    for (std::size_t k = 0; k < banded.size(); ++k) run.factors[rest.index[k]] = banded[k];
   }
   if (progress) progress(points.size(), points.size());
   return run;
+}
+
+PointSubset points_not_done(std::span<const QueryPoint> points, const std::vector<char>& done) {
+  PointSubset rest;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!done[i]) {
+      rest.points.push_back(points[i]);
+      rest.index.push_back(i);
+    }
+  return rest;
 }
 
 }  // namespace skyband

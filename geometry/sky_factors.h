@@ -31,4 +31,11 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
                                   SkyFactorsMethod method, int threads = 0,
                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+// The points a first pass left (done[i] == 0), for the band method, with their input indices.
+struct PointSubset {
+  std::vector<QueryPoint> points;
+  std::vector<std::size_t> index;  // points[k] is the input's index[k]
+};
+PointSubset points_not_done(std::span<const QueryPoint> points, const std::vector<char>& done);
+
 }  // namespace skyband

@@ -101,21 +101,15 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
           done[i] = 1;
         });
   }
-  std::vector<QueryPoint> rest;
-  std::vector<std::size_t> rest_index;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!done[i]) {
-      rest.push_back(points[i]);
-      rest_index.push_back(i);
-    }
+  const PointSubset rest = points_not_done(points, done);
   const auto rest_progress = [&](std::size_t d, std::size_t) {
-    if (progress) progress(points.size() - rest.size() + d, points.size());
+    if (progress) progress(points.size() - rest.points.size() + d, points.size());
   };
-  for_each_visibility_chunk(scene, rest, options.visibility, options.threads, progress ? rest_progress : std::function<void(std::size_t, std::size_t)>{},
+  for_each_visibility_chunk(scene, rest.points, options.visibility, options.threads, progress ? rest_progress : std::function<void(std::size_t, std::size_t)>{},
                             [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
                               for (std::size_t i = 0; i < chunk.size(); ++i) {
                                 const PointVisibilityView v = chunk.view(i);
-                                const std::size_t k = rest_index[first + i];
+                                const std::size_t k = rest.index[first + i];
                                 Result& r = out[k];
                                 r.svf = sky_view_factor(v);
                                 r.sky_exposure = sky_exposure(v);
