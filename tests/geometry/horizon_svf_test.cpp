@@ -61,6 +61,14 @@ std::vector<QueryPoint> points_around(const std::vector<OrientedBox>& boxes, std
   return pts;
 }
 
+// Six random rotated boxes within 10 m of the origin: the band-agreement tests' scene.
+std::vector<OrientedBox> six_boxes(std::uint64_t seed) {
+  gen::RandomBoxParams params;
+  params.count = 6;
+  params.extent_m = 10;
+  return gen::random_boxes(params, seed);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(classification_of_components) {
@@ -233,10 +241,7 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_band_method_at_many_bands) {
   // The band method is exact in α and converges in δ. Its SVF at 4096 bands is a reference to
   // ~1e-5; its exposure converges more slowly (the bands against the face's own plane are
   // ~√(2/N) rad wide in δ and sampled at their weight median), to ~1e-3 here.
-  gen::RandomBoxParams params;
-  params.count = 6;
-  params.extent_m = 10;
-  const auto boxes = gen::random_boxes(params, 77);
+  const auto boxes = six_boxes(77);
   const Scene scene(gen::boxes_to_soup(boxes));
   const ColumnScene columns = classify_column_scene(scene.soup());
   HorizonSvf h(scene, columns, 1e-6);
@@ -310,10 +315,7 @@ BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
   // the arc's elevation e₀(φ) nearly a step in azimuth (measured worst 3e-6); under a smooth non-uniform sky
   // it must agree with the band method's exact-in-α integral at 4096 bands (a reference to
   // ~1e-5 here, as in agrees_with_the_band_method_at_many_bands).
-  gen::RandomBoxParams params;
-  params.count = 6;
-  params.extent_m = 10;
-  const auto boxes = gen::random_boxes(params, 91);
+  const auto boxes = six_boxes(91);
   const Scene scene(gen::boxes_to_soup(boxes));
   HorizonSvf h(scene, scene.column_scene(), 1e-6);
   const std::vector<QueryPoint> pts = points_around(boxes, 17, 10, 3);
