@@ -39,14 +39,15 @@ struct SvfArgs {
   bool demo = false;
 };
 
-// "9800 points by the exact horizon (784 column solids, 1 other component), 200 by bands".
+// "9800 points by the exact horizon (784 column solids, 1 other component), 200 by the exact
+// union of occluders, 0 by bands".
 std::string method_summary(const SkyFactorsRun& run) {
   const auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
   std::string s = count(run.by_horizon, "point", "points") + " by the exact horizon";
   if (run.column_solids + run.other_components > 0)
     s += " (" + count(run.column_solids, "column solid", "column solids") + ", " +
          count(run.other_components, "other component", "other components") + ")";
-  return s + ", " + std::to_string(run.by_bands) + " by bands";
+  return s + ", " + std::to_string(run.by_exact) + " by the exact union of occluders, " + std::to_string(run.by_bands) + " by bands";
 }
 
 void run_demo(const SvfArgs& a) {

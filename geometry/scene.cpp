@@ -1,6 +1,7 @@
 #include "geometry/scene.h"
 
 #include "geometry/column_scene.h"
+#include "geometry/occluder_set.h"
 
 #include <algorithm>
 #include <array>
@@ -32,6 +33,11 @@ Scene::Scene(TriangleSoup soup) : soup_(std::move(soup)) { build(); }
 const ColumnScene& Scene::column_scene() const {
   std::call_once(column_once_, [&] { column_scene_ = std::make_shared<const ColumnScene>(classify_column_scene(soup_)); });
   return *column_scene_;
+}
+
+const OccluderSet& Scene::occluders() const {
+  std::call_once(occluders_once_, [&] { occluders_ = std::make_shared<const OccluderSet>(build_occluder_set(soup_)); });
+  return *occluders_;
 }
 
 Vec3 Scene::triangle_normal(std::uint32_t t) const {

@@ -13,6 +13,7 @@
 namespace skyband {
 
 struct ColumnScene;
+struct OccluderSet;
 
 struct Aabb {
   Vec3 lo{+1e300, +1e300, +1e300};
@@ -63,6 +64,9 @@ class Scene {
   // The scene's column-solid classification (geometry/column_scene.h), computed on first use
   // (thread-safe) and kept.
   const ColumnScene& column_scene() const;
+  // The scene's occluders for the exact visible sky (geometry/occluder_set.h), built on first use
+  // (thread-safe) and kept.
+  const OccluderSet& occluders() const;
 
   // Closest hit along the ray (watertight ray/triangle test), or nothing.
   std::optional<RayHit> intersect(const Ray& ray) const;
@@ -79,6 +83,8 @@ class Scene {
   Aabb empty_box_;
   mutable std::once_flag column_once_;
   mutable std::shared_ptr<const ColumnScene> column_scene_;
+  mutable std::once_flag occluders_once_;
+  mutable std::shared_ptr<const OccluderSet> occluders_;
 };
 
 }  // namespace skyband

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/column_scene.h"
+#include "geometry/exact_sky.h"
 #include "geometry/horizon_svf.h"
 #include "geometry/parallel_chunks.h"
 #include "geometry/point_order.h"
@@ -19,6 +20,15 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
   if (method == SkyFactorsMethod::bands) {
     run.factors = compute_sky_factors(scene, points, options, threads, progress);
     run.by_bands = points.size();
+    return run;
+  }
+  if (method == SkyFactorsMethod::exact) {
+    run.factors.resize(points.size());
+    run.by_exact = points.size();
+    const std::vector<std::uint32_t> order = xy_morton_order(points);
+    for_each_in_chunks(
+        points.size(), 16, threads, progress, [&] { return std::make_unique<ExactSky>(scene, options.surface_offset_m); },
+        [&](ExactSky& exact, std::size_t k) { exact.compute(points[order[k]], run.factors[order[k]]); });
     return run;
   }
   const ColumnScene& columns = scene.column_scene();
@@ -37,13 +47,18 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
         done_by_horizon[i] = horizon.compute(points[i], run.factors[i]);
       });
 
-  // Pass 2: the band method on the rest.
+  // Pass 2: the exact visible sky on the rest.
   const PointSubset rest = points_not_done(points, done_by_horizon);
-  run.by_bands = rest.points.size();
+  run.by_exact = rest.points.size();
   run.by_horizon = points.size() - rest.points.size();
   if (!rest.points.empty()) {
-    const std::vector<SkyFactors> banded = compute_sky_factors(scene, rest.points, options, threads);
-    for (std::size_t k = 0; k < banded.size(); ++k) run.factors[rest.index[k]] = banded[k];
+    const std::vector<std::uint32_t> rest_order = xy_morton_order(rest.points);
+    for_each_in_chunks(
+        rest.points.size(), 16, threads, {}, [&] { return std::make_unique<ExactSky>(scene, options.surface_offset_m); },
+        [&](ExactSky& exact, std::size_t k) {
+          const std::size_t i = rest_order[k];
+          exact.compute(rest.points[i], run.factors[rest.index[i]]);
+        });
   }
   if (progress) progress(points.size(), points.size());
   return run;

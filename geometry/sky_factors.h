@@ -13,13 +13,15 @@
 namespace skyband {
 
 enum class SkyFactorsMethod {
-  automatic,  // exact horizon where valid, bands elsewhere
+  automatic,  // the exact horizon where valid, the exact visible sky elsewhere
+  exact,      // the exact visible sky (geometry/exact_sky.h) everywhere
   bands,      // the band method everywhere (identical to compute_sky_factors)
 };
 
 struct SkyFactorsRun {
   std::vector<SkyFactors> factors;  // in input order
   std::size_t by_horizon = 0;       // points computed by the exact horizon
+  std::size_t by_exact = 0;         // points computed by the exact visible sky
   std::size_t by_bands = 0;         // points computed by the band method
   std::size_t column_solids = 0;    // the scene's classification (geometry/column_scene.h)
   std::size_t other_components = 0;

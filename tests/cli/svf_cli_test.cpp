@@ -111,14 +111,15 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
 }
 
 // The default method reports which points it computed exactly: the cube on no ground is a column
-// scene, so a point beside it goes by the exact horizon, one inside it by the band method.
+// scene, so a point beside it goes by the exact horizon, one inside it by the exact union of the
+// occluders' projections.
 BOOST_AUTO_TEST_CASE(method_summary_on_stderr) {
   const fs::path d = skyband::test::test_folder("svf_cli_method");
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n5,5,5\n";
   const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"));
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
-  BOOST_TEST(r.err.find("1 point by the exact horizon (1 column solid, 0 other components), 1 by bands") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("1 point by the exact horizon (1 column solid, 0 other components), 1 by the exact union of occluders, 0 by bands") != std::string::npos, r.err);
   const std::string text = slurp(d / "o.csv");
   BOOST_TEST(text.substr(text.rfind('\n', text.size() - 2) + 1) == "5,5,5,0,0\n");  // inside: nothing seen
 }

@@ -269,10 +269,10 @@ BOOST_AUTO_TEST_CASE(refuses_points_under_or_inside_solids_and_the_driver_falls_
   BOOST_TEST(f.svf < 1.0);                                               // the floating box is higher
   BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, f)); // inside the first box
 
-  // The driver: inside → 0 by the band method; on the roof and beside → the horizon.
+  // The driver: inside → 0 by the exact visible sky; on the roof and beside → the horizon.
   const std::vector<QueryPoint> pts = {{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, {Vec3(2, 2, 4), Vec3(0, 0, 1)}, {Vec3(6, 6, 4), Vec3(0, 0, 1)}};
   const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
-  BOOST_TEST(run.by_bands == 1u);
+  BOOST_TEST(run.by_exact == 1u);
   BOOST_TEST(run.by_horizon == 2u);
   BOOST_TEST(run.factors[0].svf == 0.0);
   const SkyFactorsRun bands = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::bands, 1);
@@ -363,5 +363,7 @@ BOOST_AUTO_TEST_CASE(other_components_hidden_behind_column_solids_do_not_matter)
   const std::vector<QueryPoint> pts = {{Vec3(0, -10, 0), Vec3(0, 0, 1)}, {Vec3(0, 15, 0), Vec3(0, 0, 1)}};
   const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
   BOOST_TEST(run.by_horizon == 1u);
-  BOOST_TEST(run.by_bands == 1u);
+  BOOST_TEST(run.by_exact == 1u);
+  const double exact = svf_union_oracle(pts[1].position + 1e-6 * pts[1].normal, pts[1].normal, soup);
+  BOOST_TEST(std::abs(run.factors[1].svf - exact) < kExact);
 }

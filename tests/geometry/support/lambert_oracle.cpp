@@ -192,9 +192,25 @@ double svf_single_convex_box(const Vec3& p, const Vec3& n_in, const OrientedBox&
   return open_sky_view_factor(n) - blocked;
 }
 
-double svf_union_oracle(const Vec3& p, const Vec3& n_in, std::span<const Polygon3> occluders) {
+// Signed solid angle of a union boundary on cube face f lifted back to 3D: a fan of Van Oosterom &
+// Strackee triangles from its first vertex (the lifted polygon is planar, on the face's plane).
+double lifted_solid_angle(const ExactPolygon& poly, const Vec3& p, const CubeFace& f, std::vector<Vec3>& scratch) {
+  scratch.clear();
+  for (auto it = poly.vertices_begin(); it != poly.vertices_end(); ++it)
+    scratch.push_back(CGAL::to_double(it->x()) * f.u + CGAL::to_double(it->y()) * f.v + f.w);
+  double sum = 0;
+  for (std::size_t i = 1; i + 1 < scratch.size(); ++i) {
+    const Vec3 &a = scratch[0], &b = scratch[i], &c = scratch[i + 1];
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+  }
+  (void)p;
+  return sum;
+}
+
+UnionSkyFactors sky_union_oracle(const Vec3& p, const Vec3& n_in, std::span<const Polygon3> occluders) {
   const Vec3 n = n_in.normalized();
-  double blocked = 0;
+  double blocked = 0, blocked_sr = 0;
   std::vector<const Polygon3*> candidates;
   for (const Polygon3& poly : occluders)
     if (polygon_may_matter(poly, p, n) && !plane_contains_point(poly, p)) candidates.push_back(&poly);
@@ -211,16 +227,36 @@ double svf_union_oracle(const Vec3& p, const Vec3& n_in, std::span<const Polygon
     united.join(projected.begin(), projected.end());
     pieces.clear();
     united.polygons_with_holes(std::back_inserter(pieces));
-    double face_sum = 0;
+    double face_sum = 0, face_sr = 0;
     for (const ExactPolygonWithHoles& pwh : pieces) {
       // Outer boundaries are counter-clockwise and holes clockwise (CGAL convention), so the
       // signed sums of holes come out with the opposite sign and subtract.
       face_sum += lifted_contour(pwh.outer_boundary(), p, n, f, scratch);
-      for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) face_sum += lifted_contour(*h, p, n, f, scratch);
+      face_sr += lifted_solid_angle(pwh.outer_boundary(), p, f, scratch);
+      for (auto h = pwh.holes_begin(); h != pwh.holes_end(); ++h) {
+        face_sum += lifted_contour(*h, p, n, f, scratch);
+        face_sr += lifted_solid_angle(*h, p, f, scratch);
+      }
     }
     blocked += std::abs(face_sum);
+    blocked_sr += std::abs(face_sr);
   }
-  return open_sky_view_factor(n) - blocked;
+  UnionSkyFactors out;
+  out.svf = open_sky_view_factor(n) - blocked;
+  out.sky_exposure = 0.5 + std::asin(std::clamp(n.z(), -1.0, 1.0)) / kPi - blocked_sr / (2 * kPi);
+  return out;
+}
+
+double svf_union_oracle(const Vec3& p, const Vec3& n, std::span<const Polygon3> occluders) {
+  return sky_union_oracle(p, n, occluders).svf;
+}
+
+UnionSkyFactors sky_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup) {
+  std::vector<Polygon3> polys;
+  polys.reserve(soup.triangles.size());
+  for (const auto& t : soup.triangles)
+    polys.push_back({soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]});
+  return sky_union_oracle(p, n, polys);
 }
 
 double svf_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup) {

@@ -69,6 +69,14 @@ double svf_single_convex_box(const Vec3& p, const Vec3& n, const OrientedBox& bo
 
 // Exact SVF with any planar occluders (overlaps resolved by exact 2D union on cube faces).
 double svf_union_oracle(const Vec3& p, const Vec3& n, std::span<const Polygon3> occluders);
+// The same union's SVF and sky exposure (the visible sky's solid angle in front of the element
+// over 2π: the solid angle of each lifted union polygon by Van Oosterom and Strackee's triangle
+// formula over a fan, subtracted from the open front sky's 2π(1/2 + β/π), β the normal's elevation).
+struct UnionSkyFactors {
+  double svf = 0, sky_exposure = 0;
+};
+UnionSkyFactors sky_union_oracle(const Vec3& p, const Vec3& n, std::span<const Polygon3> occluders);
+UnionSkyFactors sky_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup);
 // Same with every triangle of a soup as an occluder.
 double svf_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup);
 

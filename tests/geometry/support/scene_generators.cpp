@@ -162,3 +162,111 @@ void translate(std::vector<QueryPoint>& points, const Vec3& offset) {
 }
 
 }  // namespace skyband::gen
+
+namespace skyband::gen {
+
+OpenBoxCity make_open_box_city(const OpenBoxCityParams& pr) {
+  OpenBoxCity city;
+  city.params = pr;
+  Rng rng(pr.seed);
+  TriangleSoup& soup = city.soup;
+  const int s = std::max(1, pr.splits);
+  for (int i = 0; i < pr.per_side; ++i)
+    for (int j = 0; j < pr.per_side; ++j) {
+      const double wx = rng.uniform(pr.footprint_lo_m, pr.footprint_hi_m), wy = rng.uniform(pr.footprint_lo_m, pr.footprint_hi_m);
+      const double h = rng.uniform(pr.height_lo_m, pr.height_hi_m);
+      const double cx = (i + 0.5) * pr.pitch_m, cy = (j + 0.5) * pr.pitch_m;
+      const Vec3 lo(cx - 0.5 * wx, cy - 0.5 * wy, 0), hi(cx + 0.5 * wx, cy + 0.5 * wy, h);
+      city.boxes.push_back({lo, hi});
+      // One lattice per box: coordinate k of axis a is lo + (hi − lo)·k/s, so faces meeting at an
+      // edge share its vertices bit for bit.
+      const auto lattice = [&](int axis, int k) { return k == s ? hi[axis] : lo[axis] + (hi[axis] - lo[axis]) * k / s; };
+      // A face: the lattice points varying along axes (a, b) at the fixed coordinate c = value.
+      const auto face = [&](int a, int b, int c, double value, bool flip) {
+        const auto base = std::uint32_t(soup.vertices.size());
+        for (int v = 0; v <= s; ++v)
+          for (int u = 0; u <= s; ++u) {
+            Vec3 p;
+            p[a] = lattice(a, u);
+            p[b] = lattice(b, v);
+            p[c] = value;
+            soup.vertices.push_back(p);
+          }
+        for (int v = 0; v < s; ++v)
+          for (int u = 0; u < s; ++u) {
+            const std::uint32_t q0 = base + v * (s + 1) + u, q1 = q0 + 1, q3 = q0 + (s + 1), q2 = q3 + 1;
+            if (flip) {
+              soup.triangles.push_back({q0, q2, q1});
+              soup.triangles.push_back({q0, q3, q2});
+            } else {
+              soup.triangles.push_back({q0, q1, q2});
+              soup.triangles.push_back({q0, q2, q3});
+            }
+          }
+      };
+      // Walls (outward winding) and the roof; no floor.
+      face(1, 2, 0, lo.x(), false);  // x = lo: (y, z), normal −x
+      face(1, 2, 0, hi.x(), true);   // x = hi
+      face(0, 2, 1, lo.y(), true);   // y = lo: (x, z), normal −y
+      face(0, 2, 1, hi.y(), false);  // y = hi
+      face(0, 1, 2, hi.z(), false);  // roof, normal +z
+    }
+  const double m = pr.margin_m, size = city.size_m();
+  const auto base = std::uint32_t(soup.vertices.size());
+  soup.vertices.push_back(Vec3(-m, -m, 0));
+  soup.vertices.push_back(Vec3(size + m, -m, 0));
+  soup.vertices.push_back(Vec3(size + m, size + m, 0));
+  soup.vertices.push_back(Vec3(-m, size + m, 0));
+  soup.triangles.push_back({base, base + 1, base + 2});
+  soup.triangles.push_back({base, base + 2, base + 3});
+  return city;
+}
+
+std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed,
+                                                double beyond_m) {
+  Rng rng(seed);
+  std::vector<QueryPoint> out;
+  const double size = city.size_m();
+  while (out.size() < count) {
+    Vec3 p;
+    if (beyond_m > 0) {
+      // A ring beyond the edge: a random side, then a random position along it.
+      const double along = rng.uniform(-beyond_m, size + beyond_m), off = rng.uniform(1.0, beyond_m);
+      switch (rng.below(4)) {
+        case 0: p = Vec3(along, -off, 0.05); break;
+        case 1: p = Vec3(along, size + off, 0.05); break;
+        case 2: p = Vec3(-off, along, 0.05); break;
+        default: p = Vec3(size + off, along, 0.05); break;
+      }
+    } else {
+      p = Vec3(rng.uniform(0, size), rng.uniform(0, size), 0.05);
+    }
+    bool clear = true;
+    for (const auto& b : city.boxes)
+      if (p.x() > b[0].x() - 0.5 && p.x() < b[1].x() + 0.5 && p.y() > b[0].y() - 0.5 && p.y() < b[1].y() + 0.5) clear = false;
+    if (clear) out.push_back({p, Vec3(0, 0, 1)});
+  }
+  return out;
+}
+
+std::vector<QueryPoint> open_city_facade_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<QueryPoint> out;
+  while (out.size() < count) {
+    const auto& b = city.boxes[rng.below(city.boxes.size())];
+    const Vec3 size = b[1] - b[0];
+    // A wall chosen by area (perimeter length), a point uniform on it.
+    const double perimeter = 2 * (size.x() + size.y());
+    double s = rng.uniform(0, perimeter);
+    const double z = rng.uniform(0, size.z());
+    Vec3 p, n;
+    if (s < size.x()) p = Vec3(b[0].x() + s, b[0].y(), z), n = Vec3(0, -1, 0);
+    else if ((s -= size.x()) < size.y()) p = Vec3(b[1].x(), b[0].y() + s, z), n = Vec3(1, 0, 0);
+    else if ((s -= size.y()) < size.x()) p = Vec3(b[1].x() - s, b[1].y(), z), n = Vec3(0, 1, 0);
+    else s -= size.x(), p = Vec3(b[0].x(), b[1].y() - s, z), n = Vec3(-1, 0, 0);
+    out.push_back({p + 0.05 * n, n});
+  }
+  return out;
+}
+
+}  // namespace skyband::gen

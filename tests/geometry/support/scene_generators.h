@@ -3,6 +3,7 @@
 // Everything is a pure function of its parameters and seed (std::mt19937_64 with values drawn
 // through our own uniform mapping, so results do not depend on the standard library's
 // distribution implementations).
+#include <array>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -81,5 +82,41 @@ std::vector<QueryPoint> facade_points(const std::vector<OrientedBox>& buildings,
 inline const Vec3 kProjectedOffset{4.0e5, 6.0e6, 0.0};
 void translate(TriangleSoup& soup, const Vec3& offset);
 void translate(std::vector<QueryPoint>& points, const Vec3& offset);
+
+}  // namespace skyband::gen
+
+namespace skyband::gen {
+
+// The synthetic city most tools are tried on: `per_side` × `per_side` axis-aligned boxes on a
+// `pitch_m` grid, footprints uniform in [footprint_lo_m, footprint_hi_m] per axis, heights uniform
+// in [height_lo_m, height_hi_m], each box four walls and a roof — no floor — standing on one ground
+// quad (2 triangles) reaching `margin_m` beyond the city. Every face is split into `splits` ×
+// `splits` cells of 2 triangles from one lattice per box, so neighbouring faces share their edge
+// vertices exactly (splits = 1: 10 triangles a box, 9,002 in all for 30 × 30; splits = 11:
+// 1,089,002).
+struct OpenBoxCityParams {
+  int per_side = 30;
+  double pitch_m = 40;
+  double footprint_lo_m = 14, footprint_hi_m = 30;
+  double height_lo_m = 8, height_hi_m = 80;
+  int splits = 1;
+  double margin_m = 200;
+  std::uint64_t seed = 1;
+};
+struct OpenBoxCity {
+  OpenBoxCityParams params;
+  std::vector<std::array<Vec3, 2>> boxes;  // lo, hi corners
+  TriangleSoup soup;                       // boxes, then the ground quad at z = 0
+  double size_m() const { return params.per_side * params.pitch_m; }  // the city spans [0, size]²
+};
+OpenBoxCity make_open_box_city(const OpenBoxCityParams& params);
+
+// Points 5 cm above the ground (normal up) in the streets — outside every footprint by at least
+// 0.5 m — uniform over the city, or (`beyond_m` > 0) on the open ground within beyond_m outside
+// the city's edge.
+std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed,
+                                                double beyond_m = 0);
+// Points 5 cm in front of wall triangles (outward normal), uniform over the walls' area.
+std::vector<QueryPoint> open_city_facade_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed);
 
 }  // namespace skyband::gen

@@ -1,0 +1,348 @@
+#include "geometry/exact_sky.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "geometry/exact_sign.h"
+
+namespace skyband {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kHalfPi = 1.57079632679489661923;
+
+// Azimuth range (diamond angles lo ≤ hi, hi may exceed 4) of an xy box seen from outside it
+// (offsets x0 ≤ x1, y0 ≤ y1 from the point; not all containing 0).
+void box_azimuths(double x0, double x1, double y0, double y1, double& lo, double& hi) {
+  double sx, sy, ex, ey;
+  if (y0 > 0) {  // box above the point
+    sx = x1, sy = x1 > 0 ? y0 : y1;
+    ex = x0, ey = x0 < 0 ? y0 : y1;
+  } else if (y1 < 0) {  // below
+    sx = x0, sy = x0 < 0 ? y1 : y0;
+    ex = x1, ey = x1 > 0 ? y1 : y0;
+  } else if (x0 > 0) {  // right, straddling y = 0
+    sx = x0, sy = y0, ex = x0, ey = y1;
+  } else {  // left, straddling y = 0
+    sx = x1, sy = y1, ex = x1, ey = y0;
+  }
+  lo = diamond_angle(sx, sy);
+  hi = diamond_angle(ex, ey);
+  if (hi < lo) hi += 4;  // through t = 0
+}
+
+double node_distance2(const Aabb& box, const Vec3& p) {
+  const double dx = std::max({box.lo.x() - p.x(), p.x() - box.hi.x(), 0.0});
+  const double dy = std::max({box.lo.y() - p.y(), p.y() - box.hi.y(), 0.0});
+  return dx * dx + dy * dy;
+}
+
+}  // namespace
+
+ExactSky::ExactSky(const Scene& scene, double surface_offset_m)
+    : scene_(scene), set_(scene.occluders()), offset_m_(surface_offset_m) {}
+
+void ExactSky::insert_back_of_face() {
+  const Vec3& n = n_;
+  if (n.x() == 0 && n.y() == 0) {
+    if (n.z() < 0) sky_.insert_full_turn(OccludedSky::kGround, OccludedSky::kZenith);
+    return;
+  }
+  // The face's own plane: tan e = −(n_x w_x + n_y w_y)/n_z along w. Behind the face lies the sky
+  // below it on the far side of the normal (n_z > 0), the whole far half (a vertical face), or
+  // all the sky above it (n_z < 0).
+  const double tl = diamond_angle(-n.y(), n.x()), tm = diamond_angle(-n.x(), -n.y()), tr = diamond_angle(n.y(), -n.x());
+  if (n.z() > 0) {
+    sky_.insert_half_turn(OccludedSky::kGround, sky_.add_circle(-n.x() / n.z(), -n.y() / n.z()), tl, tm, tr);
+  } else if (n.z() == 0) {
+    sky_.insert_half_turn(OccludedSky::kGround, OccludedSky::kZenith, tl, tm, tr);
+  } else {
+    sky_.insert_full_turn(sky_.add_circle(-n.x() / n.z(), -n.y() / n.z()), OccludedSky::kZenith);
+  }
+}
+
+// Conservative: true when everything in the box is at or below the point's horizontal, behind
+// its face, or already occluded over the box's azimuth range.
+bool ExactSky::node_hidden(const Aabb& box) const {
+  const Vec3& p = p_;
+  if (box.hi.z() <= p.z()) return true;
+  const double x0 = box.lo.x() - p.x(), x1 = box.hi.x() - p.x();
+  const double y0 = box.lo.y() - p.y(), y1 = box.hi.y() - p.y();
+  const double z0 = box.lo.z() - p.z(), z1 = box.hi.z() - p.z();
+  // Behind the face: the largest n·(c − p) over the box's corners.
+  const double front = std::max(n_.x() * x0, n_.x() * x1) + std::max(n_.y() * y0, n_.y() * y1) + std::max(n_.z() * z0, n_.z() * z1);
+  if (front < -1e-12 * (std::abs(x0) + std::abs(x1) + std::abs(y0) + std::abs(y1) + std::abs(z0) + std::abs(z1))) return true;
+  const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
+  if (dx == 0 && dy == 0) return false;
+  const double top = z1 / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
+  double bottom = -kInf;
+  if (z0 > 0) {
+    const double fx = std::max(std::abs(x0), std::abs(x1)), fy = std::max(std::abs(y0), std::abs(y1));
+    bottom = z0 / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
+  }
+  double lo, hi;
+  box_azimuths(x0, x1, y0, y1, lo, hi);
+  return sky_.hidden(lo, hi, top, bottom);
+}
+
+void ExactSky::project(const Occluder& o) {
+  const Vec3& p = p_;
+  const std::uint32_t k = o.count;
+  std::array<Vec3, 4> d;
+  bool above = false;
+  double front = -kInf;
+  for (std::uint32_t i = 0; i < k; ++i) {
+    d[i] = o.v[i] - p;
+    above = above || d[i].z() > 0;
+    front = std::max(front, n_.dot(d[i]));
+  }
+  if (!above) return;  // at or below the horizontal plane (exact: fl(a − b) has the sign of a − b)
+  if (front < 0) {     // behind the face (conservative up to rounding of a hair in front)
+    double scale = 0;
+    for (std::uint32_t i = 0; i < k; ++i) scale = std::max(scale, d[i].lpNorm<Eigen::Infinity>());
+    if (front < -1e-12 * scale) return;
+  }
+  // Cull against what is already occluded: the highest elevation is at most max z / distance to
+  // the xy box, over the azimuth range of the box.
+  double x0 = kInf, x1 = -kInf, y0 = kInf, y1 = -kInf, zmin = kInf, zmax = -kInf;
+  for (std::uint32_t i = 0; i < k; ++i) {
+    x0 = std::min(x0, d[i].x()), x1 = std::max(x1, d[i].x());
+    y0 = std::min(y0, d[i].y()), y1 = std::max(y1, d[i].y());
+    zmin = std::min(zmin, d[i].z()), zmax = std::max(zmax, d[i].z());
+  }
+  const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
+  if (dx > 0 || dy > 0) {
+    const double top = zmax / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
+    double bottom = -kInf;
+    if (zmin > 0) {
+      const double fx = std::max(std::abs(x0), std::abs(x1)), fy = std::max(std::abs(y0), std::abs(y1));
+      bottom = zmin / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
+    }
+    double lo, hi;
+    box_azimuths(x0, x1, y0, y1, lo, hi);
+    if (sky_.hidden(lo, hi, top, bottom)) return;
+  }
+  const int s3 = exact_orientation(o.v[0], o.v[1], o.v[2], p);
+  if (s3 == 0) return;  // seen edge-on: hides a set of measure zero
+  ++projected_;
+  // The circle through p of each edge (i, i + 1), made once: tan e = a·w_x + b·w_y on the plane
+  // with normal m = d_i × d_{i+1} (the same bits whichever triangle of a shared edge makes it).
+  std::array<std::uint32_t, 4> circle;
+  std::array<bool, 4> made{};
+  const auto edge_circle = [&](std::uint32_t e) -> std::uint32_t {
+    if (!made[e]) {
+      made[e] = true;
+      const Vec3 m = d[e].cross(d[(e + 1) % k]);
+      const double a = -m.x() / m.z(), b = -m.y() / m.z();
+      circle[e] = m.z() != 0 && std::isfinite(a) && std::isfinite(b) ? sky_.add_circle(a, b) : OccludedSky::kGround;
+    }
+    return circle[e];  // kGround: the edge lies in a vertical plane through p (no azimuth range)
+  };
+  std::array<double, 4> t, wx, wy;
+  const auto direction = [&](std::uint32_t i) {
+    const double r = 1.0 / std::sqrt(d[i].x() * d[i].x() + d[i].y() * d[i].y());
+    wx[i] = d[i].x() * r, wy[i] = d[i].y() * r;
+    t[i] = diamond_angle(d[i].x(), d[i].y());
+  };
+
+  const int s = exact_orient2d_sign(o.v[0], o.v[1], o.v[2]);
+  if (s != 0) {
+    std::array<int, 4> side;
+    bool contains = true;
+    for (std::uint32_t i = 0; i < k && contains; ++i) {
+      side[i] = exact_orient2d_sign(o.v[i], o.v[(i + 1) % k], p);
+      contains = side[i] * s >= 0;
+    }
+    if (contains) {
+      // Over (or under) the point: each edge not through p's vertical bounds the sky it covers
+      // from its arc up to the zenith (down to the nadir) over its azimuth range.
+      const bool over = s3 * s > 0;
+      for (std::uint32_t i = 0; i < k; ++i)
+        if (d[i].x() != 0 || d[i].y() != 0) direction(i);
+      for (std::uint32_t i = 0; i < k; ++i) {
+        if (side[i] == 0) continue;
+        const std::uint32_t j = (i + 1) % k;
+        const std::uint32_t c = edge_circle(i);
+        if (c == OccludedSky::kGround) continue;
+        if (over) sky_.insert(c, OccludedSky::kZenith, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
+        else sky_.insert(OccludedSky::kGround, c, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
+      }
+      return;
+    }
+  }
+  // The point's xy lies outside the occluder's: its azimuth range is less than a half turn, with
+  // a first vertex F and a last La (counter-clockwise), and two chains of edges between them.
+  for (std::uint32_t i = 0; i < k; ++i) direction(i);
+  std::array<double, 4> u;  // azimuths unwrapped around vertex 0's
+  std::uint32_t f = 0, la = 0;
+  for (std::uint32_t i = 0; i < k; ++i) {
+    double v = t[i] - t[0];
+    if (v > 2) v -= 4;
+    if (v < -2) v += 4;
+    u[i] = v;
+    if (v < u[f]) f = i;
+    if (v > u[la]) la = i;
+  }
+  if (f == la || exact_orient2d_sign(p, o.v[f], o.v[la]) <= 0) return;  // no azimuth range
+  // The chains F → La forwards and backwards around the polygon; the one through a vertex above
+  // the great circle of F and La (exact orient3d) is the upper one.
+  std::array<std::uint32_t, 5> fwd, bwd;
+  std::uint32_t nf = 0, nb = 0;
+  for (std::uint32_t i = f;; i = (i + 1) % k) {
+    fwd[nf++] = i;
+    if (i == la) break;
+  }
+  for (std::uint32_t i = f;; i = (i + k - 1) % k) {
+    bwd[nb++] = i;
+    if (i == la) break;
+  }
+  const bool fwd_has_inner = nf > 2;
+  const std::uint32_t m = fwd_has_inner ? fwd[1] : bwd[1];
+  const int above_m = exact_orientation(o.v[f], o.v[la], o.v[m], p);
+  if (above_m == 0) return;  // (coplanar with p: excluded above)
+  const bool fwd_upper = (above_m > 0) == fwd_has_inner;
+  const std::uint32_t* up = fwd_upper ? fwd.data() : bwd.data();
+  const std::uint32_t* lo = fwd_upper ? bwd.data() : fwd.data();
+  const std::uint32_t nu = fwd_upper ? nf : nb, nl = fwd_upper ? nb : nf;
+  const auto edge_of = [&](std::uint32_t a, std::uint32_t b) { return b == (a + 1) % k ? a : b; };
+  std::uint32_t iu = 0, il = 0, at = f;
+  double x = u[f];
+  while (iu + 1 < nu && il + 1 < nl) {
+    const double eu = u[up[iu + 1]], el = u[lo[il + 1]];
+    const double next = std::min(eu, el);
+    const std::uint32_t next_vertex = eu <= el ? up[iu + 1] : lo[il + 1];
+    if (next > x) {
+      const std::uint32_t cl = edge_circle(edge_of(lo[il], lo[il + 1]));
+      const std::uint32_t cu = edge_circle(edge_of(up[iu], up[iu + 1]));
+      if (cl != OccludedSky::kGround && cu != OccludedSky::kGround)
+        sky_.insert(cl, cu, t[at], wx[at], wy[at], t[next_vertex], wx[next_vertex], wy[next_vertex]);
+      x = next;
+      at = next_vertex;
+    }
+    if (eu <= next) ++iu;
+    if (el <= next) ++il;
+  }
+}
+
+void ExactSky::walk() {
+  const std::vector<OccluderNode>& nodes = set_.nodes;
+  if (nodes.empty()) return;
+  // A bucket queue over the squared elevation bound in quarter-octaves, highest first; last in,
+  // first out within one (as the exact horizon's walk, geometry/horizon_svf.cpp).
+  const auto bucket_of = [&](const Aabb& b) {
+    const double d2 = node_distance2(b, p_), dz = b.hi.z() - p_.z();
+    if (!(d2 > 0)) return 127;  // over the point's xy: first
+    if (!(dz > 0)) return 0;
+    const auto quarter_octaves = int(std::bit_cast<std::uint64_t>(dz * dz / d2) >> 50);
+    return std::clamp(quarter_octaves - 4 * 1023 + 84, 1, 126);
+  };
+  for (auto& b : buckets_) b.clear();
+  std::uint64_t filled[2] = {0, 0};
+  const auto push = [&](std::uint32_t c) {
+    const OccluderNode& node = nodes[c];
+    if (node.count == 0) {
+      __builtin_prefetch(&nodes[node.first]);
+      __builtin_prefetch(reinterpret_cast<const char*>(nodes.data() + node.first + 2) - 1);
+    } else {
+      __builtin_prefetch(&set_.occluders[node.first]);
+    }
+    const int b = bucket_of(node.box);
+    buckets_[b].push_back(c);
+    filled[b >> 6] |= std::uint64_t(1) << (b & 63);
+  };
+  push(0);
+  while (filled[0] | filled[1]) {
+    const int b = filled[1] ? 127 - __builtin_clzll(filled[1]) : 63 - __builtin_clzll(filled[0]);
+    const std::uint32_t index = buckets_[b].back();
+    buckets_[b].pop_back();
+    if (buckets_[b].empty()) filled[b >> 6] &= ~(std::uint64_t(1) << (b & 63));
+    const OccluderNode& node = nodes[index];
+    ++nodes_visited_;
+    if (node_hidden(node.box)) continue;
+    if (node.count > 0) {
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) project(set_.occluders[k]);
+      continue;
+    }
+    push(node.first);
+    push(node.first + 1);
+  }
+}
+
+void ExactSky::compute(const QueryPoint& q, SkyFactors& out) {
+  n_ = q.normal;
+  p_ = q.position + offset_m_ * n_;
+  projected_ = nodes_visited_ = 0;
+  sky_.reset();
+  insert_back_of_face();
+  sky_.clear_changed();
+  walk();
+  if (!sky_.changed()) {
+    // The open sky in front of the face in closed form: SVF (1 + sin β)/2, exposure 1/2 + β/π.
+    const bool horizontal = n_.x() == 0 && n_.y() == 0;
+    const double beta = std::asin(std::clamp(n_.z(), -1.0, 1.0));
+    out.svf = horizontal ? (n_.z() > 0 ? 1.0 : 0.0) : 0.5 * (1 + n_.z());
+    out.sky_exposure = horizontal ? (n_.z() > 0 ? 1.0 : 0.0) : 0.5 + beta / kPi;
+    return;
+  }
+  out = integrate(sky_, n_);
+}
+
+SkyFactors ExactSky::integrate(const OccludedSky& sky, const Vec3& n) {
+  const Vec3 Z(0, 0, 1);
+  const bool meridians = n.x() != 0 || n.y() != 0;
+  // Lambert's arc term ½·Θ·n·ĝ is summed as Θ·n·ĝ (halved at the end); the fan triangle (Z, a, b)
+  // of circle c over [w0, w1], and its solid angle (Van Oosterom & Strackee 1983).
+  double phi = 0, omega = 0;
+  const auto fan = [&](std::uint32_t c, double w0x, double w0y, double w1x, double w1y, double sign) {
+    if (c == OccludedSky::kZenith) return;
+    const Vec3 a = Vec3(w0x, w0y, sky.value(c, w0x, w0y)).normalized();
+    const Vec3 b = Vec3(w1x, w1y, sky.value(c, w1x, w1y)).normalized();
+    const Vec3 ab = a.cross(b);
+    const double nab = ab.norm();
+    if (nab > 0) phi += sign * std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
+    omega += sign * 2 * std::atan2(Z.dot(ab), 1 + a.z() + a.dot(b) + b.z());
+  };
+  // Σ over the gaps of (elevation of the upper bound − of the lower) at direction w.
+  const auto visible_elevation = [&](std::span<const std::uint32_t> ids, double wx, double wy) {
+    const auto e = [&](std::uint32_t c) { return c == OccludedSky::kZenith ? kHalfPi : std::atan(sky.value(c, wx, wy)); };
+    double v = 0;
+    for (std::size_t k = 1; k < ids.size(); k += 2) {
+      if (ids[k] == OccludedSky::kZenith) break;
+      v += (k + 1 < ids.size() ? e(ids[k + 1]) : kHalfPi) - e(ids[k]);
+    }
+    return v;
+  };
+  // Meridian arcs: ½·M(w)·(V_right − V_left) at each piece boundary where the lists differ,
+  // M(w) = −n_x w_y + n_y w_x (Z × w, unit, dotted with n).
+  std::span<const std::uint32_t> prev, first;
+  double prev_x = 0, prev_y = 0;
+  bool have_prev = false;
+  double mer = 0;
+  const auto same = [](std::span<const std::uint32_t> a, std::span<const std::uint32_t> b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+  };
+  sky.for_each_piece([&](double, double w0x, double w0y, double, double w1x, double w1y, std::span<const std::uint32_t> ids) {
+    for (std::size_t k = 1; k < ids.size(); k += 2) {
+      if (ids[k] == OccludedSky::kZenith) break;
+      fan(ids[k], w0x, w0y, w1x, w1y, 1.0);
+      if (k + 1 < ids.size()) fan(ids[k + 1], w0x, w0y, w1x, w1y, -1.0);
+    }
+    if (meridians) {
+      if (!have_prev) first = ids;
+      else if (!same(prev, ids))
+        mer += (-n.x() * w0y + n.y() * w0x) * (visible_elevation(ids, w0x, w0y) - visible_elevation(prev, prev_x, prev_y));
+      prev = ids, prev_x = w1x, prev_y = w1y, have_prev = true;
+    }
+  });
+  if (meridians && have_prev && !same(prev, first))  // the boundary at t = 0 (direction +x)
+    mer += (n.y()) * (visible_elevation(first, 1.0, 0.0) - visible_elevation(prev, prev_x, prev_y));
+  SkyFactors f;
+  f.svf = std::clamp(0.5 * (phi + mer) / kPi, 0.0, 1.0);
+  f.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);
+  return f;
+}
+
+}  // namespace skyband

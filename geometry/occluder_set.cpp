@@ -1,0 +1,290 @@
+#include "geometry/occluder_set.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+#include "geometry/disjoint_sets.h"
+#include "geometry/exact_sign.h"
+#include "geometry/welding.h"
+
+namespace skyband {
+
+namespace {
+
+constexpr std::uint32_t kLeafSize = 4;
+
+// Exact: are a, b, c collinear (every coordinate projection of (b − a) × (c − a) zero)?
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto yz = [](const Vec3& p) { return Vec3(p.y(), p.z(), 0); };
+  const auto zx = [](const Vec3& p) { return Vec3(p.z(), p.x(), 0); };
+  return exact_orient2d_sign(a, b, c) == 0 && exact_orient2d_sign(yz(a), yz(b), yz(c)) == 0 &&
+         exact_orient2d_sign(zx(a), zx(b), zx(c)) == 0;
+}
+
+// Exact orientation of a, b, c in the plane of the non-collinear triangle (p, q, r), by its
+// projection onto the first coordinate plane where (p, q, r) is not degenerate (a projection along
+// an axis the plane is not parallel to keeps orientation up to one global sign).
+struct PlaneOrientation {
+  int axis = 2;  // 0: drop x (yz), 1: drop y (zx), 2: drop z (xy)
+  Vec3 project(const Vec3& p) const {
+    if (axis == 0) return Vec3(p.y(), p.z(), 0);
+    if (axis == 1) return Vec3(p.z(), p.x(), 0);
+    return Vec3(p.x(), p.y(), 0);
+  }
+  explicit PlaneOrientation(const Vec3& p, const Vec3& q, const Vec3& r) {
+    for (int k : {2, 0, 1}) {
+      axis = k;
+      if (exact_orient2d_sign(project(p), project(q), project(r)) != 0) return;
+    }
+  }
+  int operator()(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    return exact_orient2d_sign(project(a), project(b), project(c));
+  }
+};
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(a) << 32) | b;
+}
+
+
+// Exact: does v lie strictly between u and w on their common line (u, v, w collinear)? Compared
+// along a coordinate in which u and w differ.
+bool strictly_between(const Vec3& u, const Vec3& v, const Vec3& w) {
+  for (int a = 0; a < 3; ++a)
+    if (u[a] != w[a]) return (u[a] < v[a] && v[a] < w[a]) || (w[a] < v[a] && v[a] < u[a]);
+  return false;
+}
+
+// A region of edge-connected, exactly coplanar triangles (welded ids `id`) as one strictly convex
+// polygon, when it is one: every triangle turned to the same orientation in the plane, the
+// boundary 1-chain (edges whose net multiplicity is ±1, interior edges cancelling) one simple
+// cycle, and that cycle, with the vertices strictly between their neighbours dropped, strictly
+// convex with every vertex left of every edge. Then the triangles cover exactly the polygon, once:
+// the sum of their indicators is the winding number of the boundary cycle (1 inside a convex
+// simple polygon, 0 outside). Returns the polygon's vertex positions, or nothing.
+std::vector<Vec3> convex_outline(const TriangleSoup& soup, const std::vector<std::uint32_t>& id,
+                                 const std::vector<std::uint32_t>& tris) {
+  const auto& t0 = soup.triangles[tris[0]];
+  const PlaneOrientation orient(soup.vertices[t0[0]], soup.vertices[t0[1]], soup.vertices[t0[2]]);
+  std::unordered_map<std::uint64_t, int> net;  // key (a, b), a < b: count(a→b) − count(b→a)
+  std::unordered_map<std::uint32_t, Vec3> position;
+  for (const std::uint32_t t : tris) {
+    const auto& tri = soup.triangles[t];
+    std::array<std::uint32_t, 3> v = {id[tri[0]], id[tri[1]], id[tri[2]]};
+    const int s = orient(soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]]);
+    if (s == 0) return {};
+    if (s < 0) std::swap(v[1], v[2]);
+    for (int k = 0; k < 3; ++k) {
+      position.emplace(id[tri[k]], soup.vertices[tri[k]]);
+      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+      net[edge_key(a, b)] += a < b ? 1 : -1;
+    }
+  }
+  std::unordered_map<std::uint32_t, std::uint32_t> next;  // boundary cycle: vertex → successor
+  std::size_t boundary = 0;
+  for (const auto& [key, m] : net) {
+    if (m == 0) continue;
+    if (m != 1 && m != -1) return {};
+    const auto lo = std::uint32_t(key >> 32), hi = std::uint32_t(key & 0xffffffffu);
+    const std::uint32_t a = m > 0 ? lo : hi, b = m > 0 ? hi : lo;
+    if (!next.emplace(a, b).second) return {};  // two boundary edges leave a: not one simple cycle
+    ++boundary;
+  }
+  if (boundary < 3) return {};
+  // One cycle through every boundary edge, starting from the smallest id (deterministic).
+  std::uint32_t start = next.begin()->first;
+  for (const auto& [a, b] : next) start = std::min(start, a);
+  std::vector<std::uint32_t> cycle;
+  std::uint32_t v = start;
+  do {
+    cycle.push_back(v);
+    const auto it = next.find(v);
+    if (it == next.end() || cycle.size() > boundary) return {};
+    v = it->second;
+  } while (v != start);
+  if (cycle.size() != boundary) return {};
+  std::vector<Vec3> poly;
+  for (const std::uint32_t c : cycle) poly.push_back(position.at(c));
+  // Drop vertices strictly between their neighbours (repeat: a dropped vertex changes neighbours).
+  for (bool dropped = true; dropped && poly.size() > 3;) {
+    dropped = false;
+    for (std::size_t i = 0; i < poly.size() && poly.size() > 3; ++i) {
+      const Vec3& u = poly[(i + poly.size() - 1) % poly.size()];
+      const Vec3& w = poly[(i + 1) % poly.size()];
+      if (collinear(u, poly[i], w) && strictly_between(u, poly[i], w)) {
+        poly.erase(poly.begin() + std::ptrdiff_t(i));
+        dropped = true;
+        --i;
+      }
+    }
+  }
+  const std::size_t k = poly.size();
+  if (k < 3) return {};
+  for (std::size_t i = 0; i < k; ++i)
+    for (std::size_t j = 0; j < k; ++j) {
+      if (j == i || j == (i + 1) % k) continue;
+      if (orient(poly[i], poly[(i + 1) % k], poly[j]) <= 0) return {};
+    }
+  return poly;
+}
+
+void build_bvh(OccluderSet& set) {
+  const auto n = std::uint32_t(set.occluders.size());
+  if (n == 0) return;
+  std::vector<Aabb> boxes(n);
+  std::vector<Vec3> centres(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Occluder& o = set.occluders[i];
+    for (std::uint32_t k = 0; k < o.count; ++k) boxes[i].extend(o.v[k]);
+    centres[i] = boxes[i].centre();
+  }
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  set.nodes.reserve(2 * n / kLeafSize + 2);
+  set.nodes.push_back({});
+  struct Task {
+    std::uint32_t node, first, count;
+  };
+  std::vector<Task> stack{{0, 0, n}};
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    Aabb box, cbox;
+    for (std::uint32_t k = task.first; k < task.first + task.count; ++k) {
+      box.extend(boxes[order[k]]);
+      cbox.extend(centres[order[k]]);
+    }
+    set.nodes[task.node].box = box;
+    const Vec3 extent = cbox.hi - cbox.lo;
+    if (task.count <= kLeafSize || !(extent.maxCoeff() > 0)) {
+      set.nodes[task.node].first = task.first;
+      set.nodes[task.node].count = task.count;
+      continue;
+    }
+    int axis = 0;
+    if (extent.y() > extent[axis]) axis = 1;
+    if (extent.z() > extent[axis]) axis = 2;
+    // Median split (ties by index: deterministic).
+    const std::uint32_t half = task.count / 2;
+    auto begin = order.begin() + task.first;
+    std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t a, std::uint32_t b) {
+      return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
+    });
+    const auto left = std::uint32_t(set.nodes.size());
+    set.nodes.push_back({});
+    set.nodes.push_back({});
+    set.nodes[task.node].first = left;
+    set.nodes[task.node].count = 0;
+    stack.push_back({left + 1, task.first + half, task.count - half});
+    stack.push_back({left, task.first, half});
+  }
+  std::vector<Occluder> sorted(n);
+  for (std::uint32_t k = 0; k < n; ++k) sorted[k] = set.occluders[order[k]];
+  set.occluders.swap(sorted);
+}
+
+}  // namespace
+
+OccluderSet build_occluder_set(const TriangleSoup& soup) {
+  OccluderSet set;
+  const std::vector<std::uint32_t> id = weld_positions(soup.vertices);
+  const std::size_t nt = soup.triangles.size();
+  std::vector<char> usable(nt, 0), merged(nt, 0);
+  std::unordered_map<std::uint64_t, std::array<std::uint32_t, 3>> edges;  // up to 2 triangles, [2]: count
+  edges.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& tri = soup.triangles[t];
+    const std::uint32_t a = id[tri[0]], b = id[tri[1]], c = id[tri[2]];
+    if (a == b || b == c || c == a ||
+        collinear(soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]])) {
+      ++set.degenerate_triangles;
+      continue;
+    }
+    usable[t] = 1;
+    for (int k = 0; k < 3; ++k) {
+      auto& e = edges[edge_key(id[tri[k]], id[tri[(k + 1) % 3]])];
+      if (e[2] < 2) e[e[2]] = std::uint32_t(t);
+      ++e[2];
+    }
+  }
+  for (const Vec3& v : soup.vertices) set.max_z = std::max(set.max_z, v.z());
+  set.occluders.reserve(nt);
+  // Regions of edge-connected, exactly coplanar triangles; each that is a convex polygon becomes
+  // one occluder (or a fan of convex quads), the others keep their triangles.
+  DisjointSets regions(nt);
+  for (const auto& [key, e] : edges) {
+    if (e[2] != 2) continue;  // boundary or non-manifold edge
+    const std::uint32_t t = e[0], u = e[1];
+    const auto& a = soup.triangles[t];
+    const auto& b = soup.triangles[u];
+    int d = 0;
+    while (d < 3 && (id[b[d]] == id[a[0]] || id[b[d]] == id[a[1]] || id[b[d]] == id[a[2]])) ++d;
+    if (d == 3) continue;  // a duplicate triangle
+    if (exact_orientation(soup.vertices[a[0]], soup.vertices[a[1]], soup.vertices[a[2]], soup.vertices[b[d]]) == 0)
+      regions.unite(t, u);
+  }
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> members;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (usable[t]) members[regions.find(std::uint32_t(t))].push_back(std::uint32_t(t));
+  std::vector<std::uint32_t> roots;
+  for (const auto& [r, m] : members)
+    if (m.size() >= 3) roots.push_back(r);
+  std::sort(roots.begin(), roots.end());
+  for (const std::uint32_t r : roots) {
+    const std::vector<std::uint32_t>& m = members[r];
+    const std::vector<Vec3> poly = convex_outline(soup, id, m);
+    if (poly.empty()) continue;
+    for (const std::uint32_t t : m) merged[t] = 1;
+    ++set.merged_regions;
+    // A fan of quads (0, i, i + 1, i + 2) and a last triangle: convex pieces whose shared
+    // diagonals give bit-identical arcs.
+    for (std::size_t i = 1; i + 1 < poly.size(); i += 2) {
+      Occluder o;
+      o.triangle = m[0];
+      o.v[0] = poly[0], o.v[1] = poly[i], o.v[2] = poly[i + 1];
+      o.count = 3;
+      if (i + 2 < poly.size()) o.v[3] = poly[i + 2], o.count = 4;
+      set.occluders.push_back(o);
+    }
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    if (!usable[t] || merged[t]) continue;
+    const auto& tri = soup.triangles[t];
+    Occluder o;
+    o.triangle = std::uint32_t(t);
+    for (int k = 0; k < 3; ++k) o.v[k] = soup.vertices[tri[k]];
+    // A partner across one of its edges: exactly coplanar, forming a strictly convex quad.
+    for (int k = 0; k < 3 && o.count == 3; ++k) {
+      const auto it = edges.find(edge_key(id[tri[k]], id[tri[(k + 1) % 3]]));
+      if (it == edges.end() || it->second[2] != 2) continue;
+      const std::uint32_t u = it->second[0] == t ? it->second[1] : it->second[0];
+      if (u == t || !usable[u] || merged[u]) continue;
+      const auto& other = soup.triangles[u];
+      // Corners: A = tri[k], B = tri[k+1] (the shared edge), C = tri[k+2], D = other's third.
+      const std::uint32_t ia = id[tri[k]], ib = id[tri[(k + 1) % 3]];
+      int d = 0;
+      while (d < 3 && (id[other[d]] == ia || id[other[d]] == ib)) ++d;
+      if (d == 3) continue;
+      const Vec3 &A = soup.vertices[tri[k]], &B = soup.vertices[tri[(k + 1) % 3]], &C = soup.vertices[tri[(k + 2) % 3]];
+      const Vec3& D = soup.vertices[other[d]];
+      if (exact_orientation(A, B, C, D) != 0) continue;
+      // The quad A, C, B, D (C and D on either side of the diagonal A–B) is strictly convex when
+      // its four corners turn the same way.
+      const PlaneOrientation orient(A, B, C);
+      const int s0 = orient(A, C, B), s1 = orient(C, B, D), s2 = orient(B, D, A), s3 = orient(D, A, C);
+      if (s0 == 0 || s1 != s0 || s2 != s0 || s3 != s0) continue;
+      o.v = {A, C, B, D};
+      o.count = 4;
+      merged[u] = 1;
+      ++set.merged_quads;
+    }
+    merged[t] = 1;
+    set.occluders.push_back(o);
+  }
+  build_bvh(set);
+  return set;
+}
+
+}  // namespace skyband
