@@ -13,6 +13,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kHalfPi = 1.57079632679489661923;
+constexpr std::uint32_t kNoCircle = 0xffffffffu;  // an edge in a vertical plane through the point
 
 // Azimuth range (diamond angles lo ≤ hi, hi may exceed 4) of an xy box seen from outside it
 // (offsets x0 ≤ x1, y0 ≤ y1 from the point; not all containing 0).
@@ -64,28 +65,36 @@ void ExactSky::insert_back_of_face() {
   }
 }
 
-// Conservative: true when everything in the box is at or below the point's horizontal, behind
-// its face, or already occluded over the box's azimuth range.
-bool ExactSky::node_hidden(const Aabb& box) const {
+// Conservative: false when everything in the box is at or below the point's horizontal or behind
+// its face; else the box's azimuth range and the bounds of tan e over it.
+bool ExactSky::node_bounds(const Aabb& box, Bounds& out) const {
   const Vec3& p = p_;
-  if (box.hi.z() <= p.z()) return true;
+  if (box.hi.z() <= p.z()) return false;
   const double x0 = box.lo.x() - p.x(), x1 = box.hi.x() - p.x();
   const double y0 = box.lo.y() - p.y(), y1 = box.hi.y() - p.y();
   const double z0 = box.lo.z() - p.z(), z1 = box.hi.z() - p.z();
   // Behind the face: the largest n·(c − p) over the box's corners.
   const double front = std::max(n_.x() * x0, n_.x() * x1) + std::max(n_.y() * y0, n_.y() * y1) + std::max(n_.z() * z0, n_.z() * z1);
-  if (front < -1e-12 * (std::abs(x0) + std::abs(x1) + std::abs(y0) + std::abs(y1) + std::abs(z0) + std::abs(z1))) return true;
+  if (front < -1e-12 * (std::abs(x0) + std::abs(x1) + std::abs(y0) + std::abs(y1) + std::abs(z0) + std::abs(z1))) return false;
   const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
-  if (dx == 0 && dy == 0) return false;
-  const double top = z1 / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
-  double bottom = -kInf;
+  out.open = dx == 0 && dy == 0;
+  if (out.open) return true;
+  out.top = z1 / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
+  out.bottom = -kInf;
   if (z0 > 0) {
     const double fx = std::max(std::abs(x0), std::abs(x1)), fy = std::max(std::abs(y0), std::abs(y1));
-    bottom = z0 / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
+    out.bottom = z0 / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
   }
-  double lo, hi;
-  box_azimuths(x0, x1, y0, y1, lo, hi);
-  return sky_.hidden(lo, hi, top, bottom);
+  box_azimuths(x0, x1, y0, y1, out.lo, out.hi);
+  return true;
+}
+
+// Conservative: true when everything in the box is at or below the point's horizontal, behind
+// its face, or already occluded over the box's azimuth range.
+bool ExactSky::node_hidden(const Aabb& box) const {
+  Bounds b;
+  if (!node_bounds(box, b)) return true;
+  return !b.open && sky_.hidden(b.lo, b.hi, b.top, b.bottom);
 }
 
 void ExactSky::project(const Occluder& o) {
@@ -125,6 +134,27 @@ void ExactSky::project(const Occluder& o) {
     box_azimuths(x0, x1, y0, y1, lo, hi);
     if (sky_.hidden(lo, hi, top, bottom)) return;
   }
+  if (o.upper_count >= 2 && o.lower_top_z <= p.z()) {
+    // A vertical polygon standing at or below the point's height (a wall): it covers the sky from
+    // the ground up to its upper chain's arcs (occluder_set.h), and nothing else is needed.
+    if (exact_orient2d_sign(o.v[o.across[0]], o.v[o.across[1]], p) == 0) return;  // edge-on
+    ++projected_;
+    std::uint32_t a = o.upper[0];
+    double ta = diamond_angle(d[a].x(), d[a].y());
+    double ra = 1.0 / std::sqrt(d[a].x() * d[a].x() + d[a].y() * d[a].y());
+    for (std::uint32_t i = 1; i < o.upper_count; ++i) {
+      const std::uint32_t b = o.upper[i];
+      const double tb = diamond_angle(d[b].x(), d[b].y());
+      const double rb = 1.0 / std::sqrt(d[b].x() * d[b].x() + d[b].y() * d[b].y());
+      const Vec3 m = d[a].cross(d[b]);
+      const double ca = -m.x() / m.z(), cb = -m.y() / m.z();
+      if (m.z() != 0 && std::isfinite(ca) && std::isfinite(cb))
+        sky_.insert(OccludedSky::kGround, sky_.add_circle(ca, cb), ta, d[a].x() * ra, d[a].y() * ra, tb, d[b].x() * rb,
+                    d[b].y() * rb);
+      a = b, ta = tb, ra = rb;
+    }
+    return;
+  }
   const int s3 = exact_orientation(o.v[0], o.v[1], o.v[2], p);
   if (s3 == 0) return;  // seen edge-on: hides a set of measure zero
   ++projected_;
@@ -137,9 +167,9 @@ void ExactSky::project(const Occluder& o) {
       made[e] = true;
       const Vec3 m = d[e].cross(d[(e + 1) % k]);
       const double a = -m.x() / m.z(), b = -m.y() / m.z();
-      circle[e] = m.z() != 0 && std::isfinite(a) && std::isfinite(b) ? sky_.add_circle(a, b) : OccludedSky::kGround;
+      circle[e] = m.z() != 0 && std::isfinite(a) && std::isfinite(b) ? sky_.add_circle(a, b) : kNoCircle;
     }
-    return circle[e];  // kGround: the edge lies in a vertical plane through p (no azimuth range)
+    return circle[e];  // kNoCircle: the edge lies in a vertical plane through p (no azimuth range)
   };
   std::array<double, 4> t, wx, wy;
   const auto direction = [&](std::uint32_t i) {
@@ -148,7 +178,7 @@ void ExactSky::project(const Occluder& o) {
     t[i] = diamond_angle(d[i].x(), d[i].y());
   };
 
-  const int s = exact_orient2d_sign(o.v[0], o.v[1], o.v[2]);
+  const int s = o.xy_sign;
   if (s != 0) {
     std::array<int, 4> side;
     bool contains = true;
@@ -166,7 +196,7 @@ void ExactSky::project(const Occluder& o) {
         if (side[i] == 0) continue;
         const std::uint32_t j = (i + 1) % k;
         const std::uint32_t c = edge_circle(i);
-        if (c == OccludedSky::kGround) continue;
+        if (c == kNoCircle) continue;
         if (over) sky_.insert(c, OccludedSky::kZenith, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
         else sky_.insert(OccludedSky::kGround, c, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
       }
@@ -208,6 +238,10 @@ void ExactSky::project(const Occluder& o) {
   const std::uint32_t* lo = fwd_upper ? bwd.data() : fwd.data();
   const std::uint32_t nu = fwd_upper ? nf : nb, nl = fwd_upper ? nb : nf;
   const auto edge_of = [&](std::uint32_t a, std::uint32_t b) { return b == (a + 1) % k ? a : b; };
+  // A lower chain wholly at or below the horizontal (its arcs, shorter than π between points below
+  // it, stay below): the occluder covers from the ground up, and its lower arcs are not needed.
+  bool grounded = true;
+  for (std::uint32_t i = 0; i < nl; ++i) grounded = grounded && d[lo[i]].z() <= 0;
   std::uint32_t iu = 0, il = 0, at = f;
   double x = u[f];
   while (iu + 1 < nu && il + 1 < nl) {
@@ -215,9 +249,9 @@ void ExactSky::project(const Occluder& o) {
     const double next = std::min(eu, el);
     const std::uint32_t next_vertex = eu <= el ? up[iu + 1] : lo[il + 1];
     if (next > x) {
-      const std::uint32_t cl = edge_circle(edge_of(lo[il], lo[il + 1]));
+      const std::uint32_t cl = grounded ? OccludedSky::kGround : edge_circle(edge_of(lo[il], lo[il + 1]));
       const std::uint32_t cu = edge_circle(edge_of(up[iu], up[iu + 1]));
-      if (cl != OccludedSky::kGround && cu != OccludedSky::kGround)
+      if (cl != kNoCircle && cu != kNoCircle)
         sky_.insert(cl, cu, t[at], wx[at], wy[at], t[next_vertex], wx[next_vertex], wy[next_vertex]);
       x = next;
       at = next_vertex;
@@ -253,28 +287,59 @@ void ExactSky::walk() {
     buckets_[b].push_back(c);
     filled[b >> 6] |= std::uint64_t(1) << (b & 63);
   };
+  // Nodes hidden only if the lowest gaps close are deferred; when the queue runs dry, each is
+  // tested against the union as it is then, and those still not hidden go back, to be opened.
+  // So a node is skipped only when the exact test hides it: the result does not depend on the
+  // deferral, which only changes the order (a terrain's far triangles wait until the near ones
+  // have closed the gaps under it).
+  if (opened_.size() != nodes.size()) opened_.assign(nodes.size(), 0);
+  if (++generation_ == 0) std::fill(opened_.begin(), opened_.end(), 0), generation_ = 1;
+  deferred_.clear();
   push(0);
-  while (filled[0] | filled[1]) {
-    const int b = filled[1] ? 127 - __builtin_clzll(filled[1]) : 63 - __builtin_clzll(filled[0]);
-    const std::uint32_t index = buckets_[b].back();
-    buckets_[b].pop_back();
-    if (buckets_[b].empty()) filled[b >> 6] &= ~(std::uint64_t(1) << (b & 63));
-    const OccluderNode& node = nodes[index];
-    ++nodes_visited_;
-    if (node_hidden(node.box)) continue;
-    if (node.count > 0) {
-      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) project(set_.occluders[k]);
-      continue;
+  for (;;) {
+    while (filled[0] | filled[1]) {
+      const int b = filled[1] ? 127 - __builtin_clzll(filled[1]) : 63 - __builtin_clzll(filled[0]);
+      const std::uint32_t index = buckets_[b].back();
+      buckets_[b].pop_back();
+      if (buckets_[b].empty()) filled[b >> 6] &= ~(std::uint64_t(1) << (b & 63));
+      const OccluderNode& node = nodes[index];
+      ++nodes_visited_;
+      Bounds nb;
+      if (!node_bounds(node.box, nb)) continue;
+      if (!nb.open) {
+        if (sky_.hidden(nb.lo, nb.hi, nb.top, nb.bottom)) continue;
+        if (opened_[index] != generation_ && sky_.hidden_if_gaps_close(nb.lo, nb.hi, nb.top)) {
+          deferred_.push_back(index);
+          continue;
+        }
+      }
+      if (node.count > 0) {
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+          const std::size_t before = sky_.splices();
+          project(set_.occluders[k]);
+          changing_ += sky_.splices() != before;
+        }
+        continue;
+      }
+      push(node.first);
+      push(node.first + 1);
     }
-    push(node.first);
-    push(node.first + 1);
+    if (deferred_.empty()) break;
+    std::vector<std::uint32_t> again;
+    again.swap(deferred_);
+    for (const std::uint32_t index : again) {
+      if (node_hidden(nodes[index].box)) continue;
+      opened_[index] = generation_;
+      push(index);
+    }
+    if (!(filled[0] | filled[1])) break;
   }
 }
 
 void ExactSky::compute(const QueryPoint& q, SkyFactors& out) {
   n_ = q.normal;
   p_ = q.position + offset_m_ * n_;
-  projected_ = nodes_visited_ = 0;
+  projected_ = nodes_visited_ = changing_ = 0;
   sky_.reset();
   insert_back_of_face();
   sky_.clear_changed();
@@ -317,7 +382,8 @@ SkyFactors ExactSky::integrate(const OccludedSky& sky, const Vec3& n) {
   };
   // Meridian arcs: ½·M(w)·(V_right − V_left) at each piece boundary where the lists differ,
   // M(w) = −n_x w_y + n_y w_x (Z × w, unit, dotted with n).
-  std::span<const std::uint32_t> prev, first;
+  // (copies: the spans for_each_piece hands over may not outlive the call)
+  std::vector<std::uint32_t> prev, first;
   double prev_x = 0, prev_y = 0;
   bool have_prev = false;
   double mer = 0;
@@ -331,10 +397,11 @@ SkyFactors ExactSky::integrate(const OccludedSky& sky, const Vec3& n) {
       if (k + 1 < ids.size()) fan(ids[k + 1], w0x, w0y, w1x, w1y, -1.0);
     }
     if (meridians) {
-      if (!have_prev) first = ids;
+      if (!have_prev) first.assign(ids.begin(), ids.end());
       else if (!same(prev, ids))
         mer += (-n.x() * w0y + n.y() * w0x) * (visible_elevation(ids, w0x, w0y) - visible_elevation(prev, prev_x, prev_y));
-      prev = ids, prev_x = w1x, prev_y = w1y, have_prev = true;
+      prev.assign(ids.begin(), ids.end());
+      prev_x = w1x, prev_y = w1y, have_prev = true;
     }
   });
   if (meridians && have_prev && !same(prev, first))  // the boundary at t = 0 (direction +x)

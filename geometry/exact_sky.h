@@ -58,12 +58,20 @@ class ExactSky {
   // Statistics of the last compute() (benchmarks).
   std::size_t last_occluders_projected() const { return projected_; }
   std::size_t last_nodes_visited() const { return nodes_visited_; }
+  std::size_t last_occluders_changing() const { return changing_; }  // projected and changing the union
 
   // SVF and exposure of an occluded sky seen with normal n (closed forms per piece).
   static SkyFactors integrate(const OccludedSky& sky, const Vec3& n);
 
  private:
   void insert_back_of_face();
+  // The box's culling data: its azimuth range [lo, hi] and the bounds of tan e over it; false when
+  // it is at or below the horizontal or behind the face (then hidden whatever the sky).
+  struct Bounds {
+    double lo, hi, top, bottom;
+    bool open;  // over the point's xy: no azimuth range
+  };
+  bool node_bounds(const Aabb& box, Bounds& b) const;
   bool node_hidden(const Aabb& box) const;
   void project(const Occluder& o);
   void walk();
@@ -74,7 +82,10 @@ class ExactSky {
   Vec3 p_{0, 0, 0}, n_{0, 0, 1};
   OccludedSky sky_;
   std::array<std::vector<std::uint32_t>, 128> buckets_;
-  std::size_t projected_ = 0, nodes_visited_ = 0;
+  std::vector<std::uint32_t> deferred_;       // nodes hidden only if the lowest gaps close
+  std::vector<std::uint32_t> opened_;         // per node: == generation_ once it must be opened
+  std::uint32_t generation_ = 0;
+  std::size_t projected_ = 0, nodes_visited_ = 0, changing_ = 0;
 };
 
 }  // namespace skyband

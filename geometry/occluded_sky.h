@@ -79,24 +79,32 @@ class OccludedSky {
   void insert_full_turn(std::uint32_t lo, std::uint32_t hi);
   // Whether an insertion has changed the union since reset() or clear_changed().
   bool changed() const { return changed_; }
+  std::size_t splices() const { return splices_; }  // insertions into a segment that changed it (statistics)
   void clear_changed() { changed_ = false; }
 
   // Conservative: is everything with tan e in [bottom, top] over the azimuth range [lo, hi]
   // (0 ≤ lo ≤ hi, hi may exceed 4: wraps) already occluded — below the grounded interval's top or
   // above the lowest ceiling's bottom in every bin? bottom ≤ 0 means "from below the horizon".
   bool hidden(double lo, double hi, double top, double bottom) const;
+  // Not conservative: would everything with tan e ≤ top over [lo, hi] be occluded if the lowest
+  // gap (between the grounded interval and the first floating one, not a ceiling) closed? A gap
+  // under a terrain triangle or a wall standing on a terrain above the point's height usually
+  // closes once the nearer surface is in; the walk defers what this hides and checks it against
+  // the final union (exact_sky.cpp).
+  bool hidden_if_gaps_close(double lo, double hi, double top) const;
 
   // Calls f(t0, w0x, w0y, t1, w1x, w1y, boundaries) for every piece in order of t (boundaries: the
   // sorted circle ids B₀ = kGround, B₁, …, an even count).
   template <class F>
   void for_each_piece(F&& f) const {
+    std::uint32_t two[2];
     for (int g = 0; g < kCoarseBins; ++g) {
       const Segment& s = segments_[g];
       for (std::size_t j = 0; j < s.pieces.size(); ++j) {
         const Piece& q = s.pieces[j];
         double t1, w1x, w1y;
         end_of(g, j, t1, w1x, w1y);
-        f(q.t0, q.wx, q.wy, t1, w1x, w1y, std::span<const std::uint32_t>(s.pool.data() + q.off, q.n));
+        f(q.t0, q.wx, q.wy, t1, w1x, w1y, ids_of(s, q, two));
       }
     }
   }
@@ -112,51 +120,96 @@ class OccludedSky {
     double g0, g1;  // tan e of the grounded interval's top (B₁) at the start and the end
     double flo;     // an upper bound of the first floating interval's bottom (B₂) over the piece (+∞: none)
     double cmax;    // an upper bound of the lowest ceiling's bottom over the piece (+∞: no ceiling)
-    std::uint32_t off, n;  // boundaries: pool[off .. off + n)
+    std::uint32_t top;     // B₁
+    std::uint32_t off, n;  // n boundaries: {kGround, top} when n = 2, else pool[off .. off + n)
   };
   struct Segment {
     std::vector<Piece> pieces;
     std::vector<std::uint32_t> pool;
+    int uppers = 0;  // pieces with n > 2
   };
   // A piece under construction (insertion scratch).
   struct NewPiece {
     double t0, wx, wy;
-    std::uint32_t off, n;  // in scratch_ids_
+    std::uint32_t top;
+    std::uint32_t off, n;  // n > 2: in the segment's pool (pooled: an unchanged list) or in scratch_ids_
+    bool pooled;
   };
+  static std::span<const std::uint32_t> ids_of(const Segment& s, const Piece& q, std::uint32_t (&two)[2]) {
+    if (q.n == 2) {
+      two[0] = kGround, two[1] = q.top;
+      return {two, 2};
+    }
+    return {s.pool.data() + q.off, q.n};
+  }
 
-  void end_of(int g, std::size_t j, double& t1, double& wx, double& wy) const;
+  void end_of(int g, std::size_t j, double& t1, double& wx, double& wy) const {
+    const Segment& s = segments_[g];
+    if (j + 1 < s.pieces.size()) {
+      const Piece& n = s.pieces[j + 1];
+      t1 = n.t0, wx = n.wx, wy = n.wy;
+    } else {
+      const int b = (g + 1) * kFinePerCoarse;
+      t1 = double(b) / kBinsPerUnit, wx = edge_x_[b], wy = edge_y_[b];
+    }
+  }
   static std::size_t piece_at(const std::vector<Piece>& pieces, double t);
   void insert_range(std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx,
                     double wby);
   void insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way,
                          double wbx, double wby);
   // Unites [lo, hi] into one sub-range [s0, s1] of a piece whose boundaries are `b`, where no
-  // circle crosses another; appends the resulting piece(s) to scratch_.
-  void unite_sub_range(std::span<const std::uint32_t> b, std::uint32_t lo, std::uint32_t hi, double s0, double s0x,
-                       double s0y, double s1, double s1x, double s1y);
-  // −1, 0, +1: circle x below, equal to or above circle y over a sub-range without crossings,
-  // from their values at its two ends.
-  int compare(std::uint32_t x, std::uint32_t y, double ax, double ay, double bx, double by) const;
-  void finish_piece(Piece& q, const std::uint32_t* ids, double t1x, double t1y) const;
-  void update_bins(int g, double lo, double hi);
+  // circle crosses another; appends the resulting piece to scratch_. Whether the union grew.
+  // va and vb hold the values of b's circles, then lo's and hi's, at its two ends.
+  bool unite_sub_range(std::span<const std::uint32_t> b, const Piece& q, std::uint32_t lo, std::uint32_t hi, double s0,
+                       double s0x, double s0y, const double* va, const double* vb, double s1x, double s1y);
+  // The grounded-only insertion (no piece of segment g has more than the grounded interval, and
+  // [lo, hi] reaches down into it over the whole range): the envelope's update, B₁ := max(B₁, hi).
+  void raise_in_segment(int g, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx, double wby);
+  void splice(int g, std::size_t lo_piece, std::size_t hi_piece, std::size_t n, double chg_lo, double chg_hi);
+  // −1, 0, +1: circle x below, equal to or above circle y over a sub-range without crossings, from
+  // their values at its two ends (xa, ya at direction a; xb, yb at b).
+  int order(std::uint32_t x, std::uint32_t y, double xa, double ya, double xb, double yb, double ax, double ay, double bx,
+            double by) const;
+  void finish_piece(const Segment& s, Piece& q, double t1x, double t1y) const;
+  void update_bins(int g, double lo, double hi) const;
+  // The bins of segment g brought up to date (they are recomputed lazily, when a range test reads
+  // them: most insertions are followed by others in the same segments first).
+  void ensure_bins(int g) const {
+    if (dirty_lo_[g] <= dirty_hi_[g]) {
+      update_bins(g, dirty_lo_[g], dirty_hi_[g]);
+      dirty_lo_[g] = kInf, dirty_hi_[g] = -kInf;
+    }
+  }
   bool grounded_at_least(int b, double lo, double hi, double bound) const;
 
+  static const double* const edge_x_;  // unit directions of the bin edges (kBins + 1)
+  static const double* const edge_y_;
   std::vector<std::array<double, 2>> circle_;
   std::array<Segment, kCoarseBins> segments_;
-  std::array<double, kBins> gmin_{};            // exact minimum of B₁ over each fine bin
-  std::array<double, kBins> cmax_{};            // upper bound of the lowest ceiling's bottom (+∞: none somewhere)
-  std::array<double, kBins> flo_{};             // upper bound of the first floating interval's bottom (+∞: none somewhere)
-  std::array<double, kBins> fhi_{};             // exact minimum of its top (−∞: none somewhere)
-  std::array<double, kCoarseBins> coarse_gmin_{};
-  std::array<double, kCoarseBins> coarse_cmax_{};
-  std::array<double, kCoarseBins> coarse_flo_{};
-  std::array<double, kCoarseBins> coarse_fhi_{};
+  mutable std::array<double, kBins> gmin_{};  // exact minimum of B₁ over each fine bin
+  mutable std::array<double, kBins> cmax_{};  // upper bound of the lowest ceiling's bottom (+∞: none somewhere)
+  mutable std::array<double, kBins> flo_{};   // upper bound of the first floating interval's bottom (+∞: none somewhere)
+  mutable std::array<double, kBins> fhi_{};   // exact minimum of its top (−∞: none somewhere)
+  mutable std::array<double, kBins> ohi_{};   // minimum of the first floating interval's top where there is one (not a ceiling), else of B₁
+  mutable std::array<double, kCoarseBins> coarse_gmin_{};
+  mutable std::array<double, kCoarseBins> coarse_ohi_{};
+  mutable std::array<double, kCoarseBins> coarse_cmax_{};
+  mutable std::array<double, kCoarseBins> coarse_flo_{};
+  mutable std::array<double, kCoarseBins> coarse_fhi_{};
+  mutable std::array<double, kCoarseBins> dirty_lo_{}, dirty_hi_{};  // where the bins are out of date
   std::vector<std::uint16_t> touched_;
   std::array<bool, kCoarseBins> is_touched_{};
   std::vector<NewPiece> scratch_;
+  struct Overlap {  // raise_in_segment's first pass: one overlapped piece
+    double u0, w0x, w0y, u1, w1x, w1y, s1, e0, e1;
+  };
+  std::vector<Overlap> raise_;
   std::vector<std::uint32_t> scratch_ids_;
   std::vector<double> cuts_;
+  std::vector<double> ends_, cut_vals_;  // boundary values at an overlap's ends and at its cuts
   bool changed_ = false;
+  std::size_t splices_ = 0;
   int uppers_ = 0;  // pieces with more than the grounded interval were made since reset() (enables their tests)
   // An upper bound of circle c's tan e over a piece (its peak where that lies inside).
   double circle_max(std::uint32_t c, double t0, double w0x, double w0y, double w1x, double w1y) const;

@@ -13,6 +13,7 @@ namespace skyband {
 namespace {
 
 constexpr std::uint32_t kLeafSize = 4;
+constexpr std::uint32_t kComponentLeafSize = 8;
 
 // Exact: are a, b, c collinear (every coordinate projection of (b − a) × (c − a) zero)?
 bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -130,7 +131,78 @@ std::vector<Vec3> convex_outline(const TriangleSoup& soup, const std::vector<std
   return poly;
 }
 
-void build_bvh(OccluderSet& set) {
+// The upper and lower chains of a vertical convex polygon (exact comparisons): along the
+// horizontal coordinate in which its vertices differ most, from the leftmost to the rightmost
+// vertex (the higher of a vertical pair for the upper chain, the lower for the lower chain), the
+// way round whose inner vertices lie above (below) the line between them.
+void set_vertical_chains(Occluder& o) {
+  const std::uint32_t k = o.count;
+  // The horizontal axis: x, or y where the polygon's xy segment is steeper.
+  double x0 = o.v[0].x(), x1 = x0, y0 = o.v[0].y(), y1 = y0;
+  for (std::uint32_t i = 1; i < k; ++i) {
+    x0 = std::min(x0, o.v[i].x()), x1 = std::max(x1, o.v[i].x());
+    y0 = std::min(y0, o.v[i].y()), y1 = std::max(y1, o.v[i].y());
+  }
+  const int axis = x1 - x0 >= y1 - y0 ? 0 : 1;
+  const auto h = [&](std::uint32_t i) { return o.v[i][axis]; };
+  // Leftmost and rightmost, top and bottom of each (ties: a vertical edge).
+  std::uint32_t lt = 0, lb = 0, rt = 0, rb = 0;
+  for (std::uint32_t i = 1; i < k; ++i) {
+    if (h(i) < h(lt) || (h(i) == h(lt) && o.v[i].z() > o.v[lt].z())) lt = i;
+    if (h(i) < h(lb) || (h(i) == h(lb) && o.v[i].z() < o.v[lb].z())) lb = i;
+    if (h(i) > h(rt) || (h(i) == h(rt) && o.v[i].z() > o.v[rt].z())) rt = i;
+    if (h(i) > h(rb) || (h(i) == h(rb) && o.v[i].z() < o.v[rb].z())) rb = i;
+  }
+  if (h(lt) == h(rt)) return;  // degenerate (no horizontal extent): left to the general path
+  // In the plane (h, z): orientation of (left, right, v) > 0 means v lies above the line.
+  const auto above = [&](std::uint32_t a, std::uint32_t b, std::uint32_t v) {
+    const auto hz = [&](std::uint32_t i) { return Vec3(h(i), o.v[i].z(), 0); };
+    return exact_orient2d_sign(hz(a), hz(b), hz(v));
+  };
+  // Walk from lt forwards or backwards to rt: the way whose inner vertices are all above (or, when
+  // neither way has inner vertices above, the way without inner vertices).
+  std::uint32_t ways[2][5], len[2] = {0, 0};
+  int kind[2] = {0, 0};  // 2: inner vertices, all above; 1: no inner vertex; 0: other
+  for (int w = 0; w < 2; ++w) {
+    const int dir = w == 0 ? 1 : -1;
+    bool all_above = true;
+    for (std::uint32_t i = lt;; i = (i + k + dir) % k) {
+      if (len[w] > k) {
+        all_above = false;
+        break;
+      }
+      ways[w][len[w]++] = i;
+      if (i == rt) break;
+      if (i != lt && above(lt, rt, i) <= 0) all_above = false;
+    }
+    kind[w] = ways[w][len[w] - 1] != rt ? 0 : len[w] == 2 ? 1 : all_above ? 2 : 0;
+  }
+  const int pick = kind[0] >= kind[1] ? 0 : 1;
+  if (kind[pick] == 0) return;
+  const std::uint32_t* chain = ways[pick];
+  const std::uint32_t n = len[pick];
+  if (n < 2 || chain[n - 1] != rt) return;
+  for (std::uint32_t i = 0; i < n; ++i) o.upper[i] = std::uint8_t(chain[i]);
+  o.upper_count = std::uint8_t(n);
+  // The lower chain: every vertex not strictly inside the upper one, and the bottoms of the ends.
+  double lower = -1e300;
+  for (std::uint32_t i = 0; i < k; ++i) {
+    bool inner = false;
+    for (std::uint32_t j = 1; j + 1 < n; ++j) inner = inner || chain[j] == i;
+    if ((i == lt && lt != lb) || (i == rt && rt != rb) || inner) continue;
+    lower = std::max(lower, o.v[i].z());
+  }
+  o.lower_top_z = lower;
+  o.across[0] = std::uint8_t(lt);
+  o.across[1] = std::uint8_t(rt);
+}
+
+// BVH over the occluders: first over whole connected components (median split of their boxes'
+// centres along the longest axis), then inside a component with more than a leaf's worth over its
+// occluders the same way; leaves hold ≤ 4 occluders of one component, so a leaf's box is (part
+// of) one building's and a hidden building is skipped whole. Deterministic; `set.occluders` is
+// reordered into leaf order.
+void build_bvh(OccluderSet& set, const std::vector<std::uint32_t>& component) {
   const auto n = std::uint32_t(set.occluders.size());
   if (n == 0) return;
   std::vector<Aabb> boxes(n);
@@ -140,48 +212,93 @@ void build_bvh(OccluderSet& set) {
     for (std::uint32_t k = 0; k < o.count; ++k) boxes[i].extend(o.v[k]);
     centres[i] = boxes[i].centre();
   }
+  // Occluders grouped by component (stable).
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  set.nodes.reserve(2 * n / kLeafSize + 2);
-  set.nodes.push_back({});
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return component[a] < component[b]; });
+  struct Group {
+    std::uint32_t first, count;
+    Aabb box;
+  };
+  std::vector<Group> groups;
+  for (std::uint32_t i = 0; i < n;) {
+    std::uint32_t j = i;
+    Group g{i, 0, {}};
+    while (j < n && component[order[j]] == component[order[i]]) g.box.extend(boxes[order[j++]]);
+    g.count = j - i;
+    groups.push_back(g);
+    i = j;
+  }
+  const auto longest = [](const Aabb& b) {
+    const Vec3 e = b.hi - b.lo;
+    return e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
+  };
   struct Task {
     std::uint32_t node, first, count;
+    bool over_groups;  // [first, first + count) of groups, or of order (inside one component)
   };
-  std::vector<Task> stack{{0, 0, n}};
+  set.nodes.reserve(2 * n / kLeafSize + 2 * groups.size() + 2);
+  set.nodes.push_back({});
+  std::vector<Task> stack{{0, 0, std::uint32_t(groups.size()), true}};
   while (!stack.empty()) {
-    const Task task = stack.back();
+    Task task = stack.back();
     stack.pop_back();
+    // A whole component of up to kComponentLeafSize occluders (a box: four walls and a roof) is one
+    // leaf; larger ones are split into leaves of kLeafSize.
+    std::uint32_t leaf_limit = kLeafSize;
+    if (task.over_groups && task.count == 1) {
+      task = {task.node, groups[task.first].first, groups[task.first].count, false};
+      if (task.count <= kComponentLeafSize) leaf_limit = kComponentLeafSize;
+    }
     Aabb box, cbox;
     for (std::uint32_t k = task.first; k < task.first + task.count; ++k) {
-      box.extend(boxes[order[k]]);
-      cbox.extend(centres[order[k]]);
+      if (task.over_groups) {
+        box.extend(groups[k].box);
+        cbox.extend(groups[k].box.centre());
+      } else {
+        box.extend(boxes[order[k]]);
+        cbox.extend(centres[order[k]]);
+      }
     }
     set.nodes[task.node].box = box;
     const Vec3 extent = cbox.hi - cbox.lo;
-    if (task.count <= kLeafSize || !(extent.maxCoeff() > 0)) {
+    if (!task.over_groups && (task.count <= leaf_limit || !(extent.maxCoeff() > 0))) {
       set.nodes[task.node].first = task.first;
       set.nodes[task.node].count = task.count;
+      // Lowest first: walls standing on the ground before the roof they carry, which they then
+      // mostly hide.
+      std::stable_sort(order.begin() + task.first, order.begin() + task.first + task.count,
+                       [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo.z() < boxes[b].lo.z(); });
       continue;
     }
-    int axis = 0;
-    if (extent.y() > extent[axis]) axis = 1;
-    if (extent.z() > extent[axis]) axis = 2;
-    // Median split (ties by index: deterministic).
+    const int axis = longest(cbox);
     const std::uint32_t half = task.count / 2;
-    auto begin = order.begin() + task.first;
-    std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t a, std::uint32_t b) {
-      return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
-    });
+    if (task.over_groups) {
+      auto begin = groups.begin() + task.first;
+      std::nth_element(begin, begin + half, begin + task.count, [&](const Group& x, const Group& y) {
+        const double cx = x.box.centre()[axis], cy = y.box.centre()[axis];
+        return cx != cy ? cx < cy : x.first < y.first;
+      });
+    } else {
+      auto begin = order.begin() + task.first;
+      std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t a, std::uint32_t b) {
+        return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
+      });
+    }
     const auto left = std::uint32_t(set.nodes.size());
     set.nodes.push_back({});
     set.nodes.push_back({});
     set.nodes[task.node].first = left;
     set.nodes[task.node].count = 0;
-    stack.push_back({left + 1, task.first + half, task.count - half});
-    stack.push_back({left, task.first, half});
+    stack.push_back({left + 1, task.first + half, task.count - half, task.over_groups});
+    stack.push_back({left, task.first, half, task.over_groups});
   }
   std::vector<Occluder> sorted(n);
-  for (std::uint32_t k = 0; k < n; ++k) sorted[k] = set.occluders[order[k]];
+  for (std::uint32_t k = 0; k < n; ++k) {
+    sorted[k] = set.occluders[order[k]];
+    sorted[k].xy_sign = exact_orient2d_sign(sorted[k].v[0], sorted[k].v[1], sorted[k].v[2]);
+    if (sorted[k].xy_sign == 0) set_vertical_chains(sorted[k]);
+  }
   set.occluders.swap(sorted);
 }
 
@@ -283,7 +400,17 @@ OccluderSet build_occluder_set(const TriangleSoup& soup) {
     merged[t] = 1;
     set.occluders.push_back(o);
   }
-  build_bvh(set);
+  // Connected components (triangles linked through welded vertices), for the BVH's grouping.
+  DisjointSets linked(soup.vertices.size());
+  for (std::size_t t = 0; t < nt; ++t)
+    if (usable[t]) {
+      const auto& tri = soup.triangles[t];
+      linked.unite(id[tri[0]], id[tri[1]]);
+      linked.unite(id[tri[0]], id[tri[2]]);
+    }
+  std::vector<std::uint32_t> component(set.occluders.size());
+  for (std::size_t i = 0; i < set.occluders.size(); ++i) component[i] = linked.find(id[soup.triangles[set.occluders[i].triangle][0]]);
+  build_bvh(set, component);
   return set;
 }
 

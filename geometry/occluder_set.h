@@ -30,6 +30,18 @@ struct Occluder {
   std::array<Vec3, 4> v;  // metres; v[3] unused when count == 3
   std::uint32_t count = 3;
   std::uint32_t triangle = 0;  // a source triangle of the soup (for reports)
+  // Orientation of the xy-projections of v[0], v[1], v[2] (exact: +1 counter-clockwise seen from
+  // above, −1 clockwise, 0 a vertical polygon).
+  int xy_sign = 0;
+  // A vertical polygon's upper chain: the vertices bounding it from above, in order along it (a
+  // static property: seen from any point outside its plane, higher is higher in elevation), and
+  // the highest vertex of its lower chain. From a point at or above that height the polygon covers
+  // the sky from the ground up to the upper chain's arcs. `across` are two vertices with distinct
+  // xy (the plane is the vertical through them).
+  std::uint8_t upper[4] = {0, 0, 0, 0};
+  std::uint8_t upper_count = 0;  // 0: not vertical
+  std::uint8_t across[2] = {0, 0};
+  double lower_top_z = 0;  // metres
 };
 
 struct OccluderNode {
