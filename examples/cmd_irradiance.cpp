@@ -42,6 +42,14 @@ namespace skyband::cli {
 
 namespace {
 
+// How the points were computed (by method), in plain words.
+template <class Result>
+std::string summary(const std::vector<Result>& r) {
+  std::size_t n[3] = {0, 0, 0};
+  for (const Result& x : r) ++n[int(x.method)];
+  return method_summary(n[int(SkyMethod::exact_horizon)], n[int(SkyMethod::exact_union)], n[int(SkyMethod::bands)]);
+}
+
 struct IrradianceArgs {
   PointJobArgs job;
   SunSkyOptions sun_sky;
@@ -122,9 +130,8 @@ void run_times(const IrradianceArgs& a) {
   if (!a.job.quiet) {
     double hours = 0;
     for (const SunMoment& m : moments) hours += m.hours;
-    const auto exact = std::count_if(r.begin(), r.end(), [](const PointIrradiation& x) { return x.exact_horizon; });
-    std::fprintf(stderr, "irradiance: %zu points x %zu moments (%.2f h) in %.2f s; %zu by the exact horizon, %zu by bands; wrote %s\n",
-                 r.size(), moments.size(), hours, seconds, std::size_t(exact), r.size() - std::size_t(exact), a.job.out.c_str());
+    std::fprintf(stderr, "irradiance: %zu points x %zu moments (%.2f h) in %.2f s; %s; wrote %s\n", r.size(), moments.size(),
+                 hours, seconds, summary(r).c_str(), a.job.out.c_str());
   }
 }
 
@@ -190,11 +197,9 @@ void run(const IrradianceArgs& a) {
     std::fprintf(stderr,
                  "irradiance: sun altitude %.3f deg, azimuth %.3f deg, direct normal %.1f W/m2 (%.0f lx); sky %s\n",
                  sun.altitude_deg, sun.azimuth_deg, dn.integral_nm(), luminous(dn), sky.model_name().c_str());
-    const auto exact = std::count_if(r.begin(), r.end(), [](const PointIrradiance& x) { return x.exact_horizon; });
     std::fprintf(stderr,
-                 "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); %zu by the exact horizon, "
-                 "%zu by bands; wrote %s\n",
-                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, std::size_t(exact), n - std::size_t(exact),
+                 "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); %s; wrote %s\n",
+                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, summary(r).c_str(),
                  a.job.out.c_str());
   }
 }

@@ -9,11 +9,11 @@
 // column passes through. The output holds the input rows in input order plus
 //   svf           cosine-weighted sky view factor (1 open horizontal face, 0.5 open wall),
 //   sky_exposure  visible sky solid angle in front of the face / 2π,
-// and is written atomically. Method (docs/geometry.md): by default ("auto") the exact horizon
-// wherever the scene is a column scene from the point (closed extruded buildings on a ground at or
-// below the point: exact, no bands, no tolerance), and the band method elsewhere, with adaptive
-// refinement to an estimated absolute SVF error of 5e-4 (measured max error ≤ 1e-3) or the
-// --bands / --tolerance given; "bands" uses the band method everywhere.
+// and is written atomically. Method (docs/geometry.md, geometry/sky_visibility.h): by default
+// ("auto") exact at every point, for any mesh — the exact horizon where the scene is a column scene
+// from the point (closed extruded buildings on a ground at or below it), the exact union of the
+// occluders' projections elsewhere; "bands" (or --bands / --tolerance alone) the paper's band
+// method, with adaptive refinement to an estimated absolute error of 5e-4 or N fixed bands.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,16 +39,7 @@ struct SvfArgs {
   bool demo = false;
 };
 
-// "9800 points by the exact horizon (784 column solids, 1 other component), 200 by the exact
-// union of occluders, 0 by bands".
-std::string method_summary(const SkyFactorsRun& run) {
-  const auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-  std::string s = count(run.by_horizon, "point", "points") + " by the exact horizon";
-  if (run.column_solids + run.other_components > 0)
-    s += " (" + count(run.column_solids, "column solid", "column solids") + ", " +
-         count(run.other_components, "other component", "other components") + ")";
-  return s + ", " + std::to_string(run.by_exact) + " by the exact union of occluders, " + std::to_string(run.by_bands) + " by bands";
-}
+std::string method_summary(const SkyFactorsRun& run) { return cli::method_summary(run.by_horizon, run.by_exact, run.by_bands); }
 
 void run_demo(const SvfArgs& a) {
   const DemoScene demo = make_demo_scene();
@@ -59,10 +50,11 @@ void run_demo(const SvfArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.job.method(), a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s (bands: %s)\n",
-              demo.soup.triangle_count(), pts.size(), method_summary(run).c_str(),
-              opt.tolerance > 0 ? ("adaptive, tolerance " + std::to_string(opt.tolerance)).c_str()
-                                : (std::to_string(opt.bands) + " fixed").c_str());
+  const std::string bands = run.by_bands == 0         ? ""
+                            : opt.tolerance > 0 ? " (bands: adaptive, tolerance " + std::to_string(opt.tolerance) + ")"
+                                                : " (bands: " + std::to_string(opt.bands) + " fixed)";
+  std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s%s\n", demo.soup.triangle_count(),
+              pts.size(), method_summary(run).c_str(), bands.c_str());
   std::printf("%-36s %8s %8s %8s %6s %6s\n", "point", "x [m]", "y [m]", "z [m]", "svf", "sky_exp");
   for (std::size_t i = 0; i < pts.size(); ++i)
     std::printf("%-36s %8.1f %8.1f %8.1f %6.4f %6.4f\n", demo.points[i].name.c_str(), pts[i].position.x(),
@@ -103,8 +95,9 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
   auto args = std::make_shared<SvfArgs>();
   CLI::App* cmd = app.add_subcommand(
       "svf",
-      "Sky view factor and sky exposure at calculation points: exact horizon where the scene allows it\n"
-      "(closed extruded buildings standing at or below the point), exact band-source visibility elsewhere.\n"
+      "Sky view factor and sky exposure at calculation points, exact for any mesh (open, broken,\n"
+      "overhanging; the horizon of closed extruded buildings where it applies, the exact union of the\n"
+      "occluders' projections elsewhere).\n"
       "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
       "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
   args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");

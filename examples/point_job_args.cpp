@@ -13,13 +13,12 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
   cmd->add_option("--mesh", meshes, "Mesh file (OBJ, OFF, PLY, STL); repeat for several")->check(CLI::ExistingFile);
   cmd->add_option("--points", points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
   cmd->add_option("--out", out, out_help);
-  cmd->add_option("--method", method_,
-                  "auto (default): the exact horizon where valid (a column scene seen from the point: every\n"
-                  "closed building extruded from a flat floor at or below the point, every other surface at\n"
-                  "or below it or hidden behind them), the band method elsewhere; bands: the band method\n"
-                  "everywhere. "
-                  "--bands/--tolerance set the band method wherever it is used")
-      ->check(CLI::IsMember({"auto", "bands"}));
+  o_method_ = cmd->add_option("--method", method_,
+                  "auto (default): exact at every point, for any mesh — the exact horizon where the scene is\n"
+                  "closed buildings extruded from a flat floor at or below the point (fastest), the exact\n"
+                  "union of the occluders' projections elsewhere; exact: the exact union everywhere; bands:\n"
+                  "the paper's band method (--bands N or --tolerance T; either alone selects it)")
+      ->check(CLI::IsMember({"auto", "exact", "bands"}));
   o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");
   o_tolerance_ = cmd->add_option("--tolerance", tolerance_,
                                  "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");
@@ -59,6 +58,20 @@ TriangleSoup PointJobArgs::load_meshes() const {
     if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
   }
   return soup;
+}
+
+std::string method_summary(std::size_t by_horizon, std::size_t by_exact, std::size_t by_bands) {
+  const auto count = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " point" : " points"); };
+  std::string s;
+  const auto add = [&](std::size_t n, const char* how) {
+    if (n == 0) return;
+    if (!s.empty()) s += ", ";
+    s += count(n) + " " + how;
+  };
+  add(by_horizon, "exact by the horizon of closed buildings");
+  add(by_exact, "exact by the union of the occluders' projections");
+  add(by_bands, "by the band method");
+  return s.empty() ? "no points" : s;
 }
 
 void Progress::operator()(std::size_t done, std::size_t total) {

@@ -26,8 +26,14 @@ class PointJobArgs {
   void add_to(CLI::App* cmd, const std::string& out_help);
   // The accuracy options (validated: InputError naming the flag and value).
   VisibilityOptions visibility_options() const;
-  // --method: auto (the exact horizon where the scene allows it, bands elsewhere) or bands.
-  SkyFactorsMethod method() const { return method_ == "bands" ? SkyFactorsMethod::bands : SkyFactorsMethod::automatic; }
+  // --method: auto (exact everywhere: the exact horizon where the scene allows it, the exact union
+  // elsewhere), exact (the exact union everywhere) or bands; --bands or --tolerance without
+  // --method select bands.
+  SkyFactorsMethod method() const {
+    if (method_ == "bands" || (o_method_->count() == 0 && (o_bands_->count() > 0 || o_tolerance_->count() > 0)))
+      return SkyFactorsMethod::bands;
+    return method_ == "exact" ? SkyFactorsMethod::exact : SkyFactorsMethod::automatic;
+  }
   // Requires --mesh, --points and --out (InputError "<command>: ..." naming what is missing;
   // `alternative` is appended to the --mesh message, e.g. " (or --demo)").
   void require_files(const std::string& command, const std::string& alternative = "") const;
@@ -38,8 +44,12 @@ class PointJobArgs {
   std::string method_ = "auto";
   int bands_ = 0;
   double tolerance_ = 0;
-  CLI::Option *o_bands_ = nullptr, *o_tolerance_ = nullptr;
+  CLI::Option *o_bands_ = nullptr, *o_tolerance_ = nullptr, *o_method_ = nullptr;
 };
+
+// How the points were computed, in plain words: "9,800 points exact by the horizon of closed
+// buildings, 200 exact by the union of the occluders' projections, 0 by the band method".
+std::string method_summary(std::size_t by_horizon, std::size_t by_exact, std::size_t by_bands);
 
 // "\r<label>: done / total <unit> (p%), t s" on stderr at most twice a second, silent for runs
 // under a second; the final line once.

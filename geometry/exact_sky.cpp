@@ -6,13 +6,13 @@
 #include <limits>
 
 #include "geometry/exact_sign.h"
+#include "geometry/visible_sky.h"
 
 namespace skyband {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kHalfPi = 1.57079632679489661923;
 constexpr std::uint32_t kNoCircle = 0xffffffffu;  // an edge in a vertical plane through the point
 
 // Azimuth range (diamond angles lo ≤ hi, hi may exceed 4) of an xy box seen from outside it
@@ -356,60 +356,14 @@ void ExactSky::compute(const QueryPoint& q, SkyFactors& out) {
 }
 
 SkyFactors ExactSky::integrate(const OccludedSky& sky, const Vec3& n) {
-  const Vec3 Z(0, 0, 1);
-  const bool meridians = n.x() != 0 || n.y() != 0;
-  // Lambert's arc term ½·Θ·n·ĝ is summed as Θ·n·ĝ (halved at the end); the fan triangle (Z, a, b)
-  // of circle c over [w0, w1], and its solid angle (Van Oosterom & Strackee 1983).
-  double phi = 0, omega = 0;
-  const auto fan = [&](std::uint32_t c, double w0x, double w0y, double w1x, double w1y, double sign) {
-    if (c == OccludedSky::kZenith) return;
-    const Vec3 a = Vec3(w0x, w0y, sky.value(c, w0x, w0y)).normalized();
-    const Vec3 b = Vec3(w1x, w1y, sky.value(c, w1x, w1y)).normalized();
-    const Vec3 ab = a.cross(b);
-    const double nab = ab.norm();
-    if (nab > 0) phi += sign * std::atan2(nab, a.dot(b)) * n.dot(ab) / nab;
-    omega += sign * 2 * std::atan2(Z.dot(ab), 1 + a.z() + a.dot(b) + b.z());
-  };
-  // Σ over the gaps of (elevation of the upper bound − of the lower) at direction w.
-  const auto visible_elevation = [&](std::span<const std::uint32_t> ids, double wx, double wy) {
-    const auto e = [&](std::uint32_t c) { return c == OccludedSky::kZenith ? kHalfPi : std::atan(sky.value(c, wx, wy)); };
-    double v = 0;
-    for (std::size_t k = 1; k < ids.size(); k += 2) {
-      if (ids[k] == OccludedSky::kZenith) break;
-      v += (k + 1 < ids.size() ? e(ids[k + 1]) : kHalfPi) - e(ids[k]);
-    }
-    return v;
-  };
-  // Meridian arcs: ½·M(w)·(V_right − V_left) at each piece boundary where the lists differ,
-  // M(w) = −n_x w_y + n_y w_x (Z × w, unit, dotted with n).
-  // (copies: the spans for_each_piece hands over may not outlive the call)
-  std::vector<std::uint32_t> prev, first;
-  double prev_x = 0, prev_y = 0;
-  bool have_prev = false;
-  double mer = 0;
-  const auto same = [](std::span<const std::uint32_t> a, std::span<const std::uint32_t> b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
-  };
-  sky.for_each_piece([&](double, double w0x, double w0y, double, double w1x, double w1y, std::span<const std::uint32_t> ids) {
-    for (std::size_t k = 1; k < ids.size(); k += 2) {
-      if (ids[k] == OccludedSky::kZenith) break;
-      fan(ids[k], w0x, w0y, w1x, w1y, 1.0);
-      if (k + 1 < ids.size()) fan(ids[k + 1], w0x, w0y, w1x, w1y, -1.0);
-    }
-    if (meridians) {
-      if (!have_prev) first.assign(ids.begin(), ids.end());
-      else if (!same(prev, ids))
-        mer += (-n.x() * w0y + n.y() * w0x) * (visible_elevation(ids, w0x, w0y) - visible_elevation(prev, prev_x, prev_y));
-      prev.assign(ids.begin(), ids.end());
-      prev_x = w1x, prev_y = w1y, have_prev = true;
-    }
-  });
-  if (meridians && have_prev && !same(prev, first))  // the boundary at t = 0 (direction +x)
-    mer += (n.y()) * (visible_elevation(first, 1.0, 0.0) - visible_elevation(prev, prev_x, prev_y));
-  SkyFactors f;
-  f.svf = std::clamp(0.5 * (phi + mer) / kPi, 0.0, 1.0);
-  f.sky_exposure = std::clamp(omega / (2 * kPi), 0.0, 1.0);
-  return f;
+  return integrate_occluded_sky(
+      n,
+      [&](auto&& f) {
+        sky.for_each_piece([&](double, double w0x, double w0y, double, double w1x, double w1y, std::span<const std::uint32_t> ids) {
+          f(w0x, w0y, w1x, w1y, ids);
+        });
+      },
+      [&](std::uint32_t c, double wx, double wy) { return sky.value(c, wx, wy); });
 }
 
 }  // namespace skyband

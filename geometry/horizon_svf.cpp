@@ -365,6 +365,7 @@ HorizonSvf::HorizonSvf(const Scene& scene, const ColumnScene& columns, double su
     : impl_(std::make_unique<Impl>(scene, columns, surface_offset_m)) {}
 HorizonSvf::~HorizonSvf() = default;
 bool HorizonSvf::compute(const QueryPoint& q, SkyFactors& out) { return impl_->compute(q, out); }
+const HorizonEnvelope& HorizonSvf::envelope() const { return impl_->env; }
 std::size_t HorizonSvf::last_edge_tests() const { return impl_->edge_tests; }
 std::size_t HorizonSvf::last_envelope_pieces() const { return impl_->env.run_count(); }
 

@@ -30,6 +30,8 @@
 
 namespace skyband {
 
+class HorizonEnvelope;
+
 // Per-thread evaluator. The scene and the classification must outlive it.
 class HorizonSvf {
  public:
@@ -49,6 +51,9 @@ class HorizonSvf {
   // The visible sky of the last compute() that returned true, as a fan of spherical triangles
   // (geometry/sky_fan.h) in counter-clockwise order: for irradiance under any sky.
   void visible_fan(std::vector<SkyFanTriangle>& out) const;
+
+  // The envelope of the last compute() that returned true: the sky is visible above it.
+  const HorizonEnvelope& envelope() const;
 
   // Statistics of the last compute() (benchmarks).
   std::size_t last_edge_tests() const;       // silhouette candidates tested (not culled by their node)

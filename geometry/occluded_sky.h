@@ -68,6 +68,7 @@ class OccludedSky {
     return circle_[c][0] * wx + circle_[c][1] * wy;
   }
   const std::array<double, 2>& coefficients(std::uint32_t c) const { return circle_[c]; }
+  std::size_t circle_count() const { return circle_.size(); }
 
   // Unites the interval between circles lo and hi (lo ≤ hi over the range; where rounding makes
   // lo > hi nothing is added) over the azimuth range from t0 counter-clockwise to t1, the shorter

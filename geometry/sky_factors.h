@@ -1,7 +1,7 @@
 #pragma once
-// Sky view factor and sky exposure for many points, by the fastest exact method valid at each:
-// the exact horizon (geometry/horizon_svf.h) where the scene is a column scene from the point,
-// the band method (geometry/band_visibility.h, with its options) elsewhere.
+// Sky view factor and sky exposure for many points, by the method chosen in
+// geometry/sky_visibility.h: by default exact at every point (the exact horizon where the scene is a
+// column scene from the point, the exact union of the occluders' projections elsewhere).
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -32,12 +32,5 @@ struct SkyFactorsRun {
 SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
                                   SkyFactorsMethod method, int threads = 0,
                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
-
-// The points a first pass left (done[i] == 0), for the band method, with their input indices.
-struct PointSubset {
-  std::vector<QueryPoint> points;
-  std::vector<std::size_t> index;  // points[k] is the input's index[k]
-};
-PointSubset points_not_done(std::span<const QueryPoint> points, const std::vector<char>& done);
 
 }  // namespace skyband

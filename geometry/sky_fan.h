@@ -16,13 +16,14 @@
 namespace skyband {
 
 struct SkyFanTriangle {
-  Vec3 a, b;  // unit directions: the lower arc's ends
+  Vec3 a, b;          // unit directions: the lower arc's ends
+  double sign = 1.0;  // +1, or −1 for a triangle subtracted (the sky above an occluder that floats)
 };
 
 // Gauss–Legendre nodes (4 per piece, pieces of at most max_step_rad) in azimuth over each fan
 // triangle: f(φ, cos φ, sin φ, e₀, w) with e₀ ∈ [0, π/2] the triangle's lower arc's elevation at
 // φ — tan e₀ = −(m_x cos φ + m_y sin φ)/m_z on the arc's plane m = a × b — and w the node's
-// weight (radians). Triangles without an azimuth range are skipped.
+// weight (radians) times the triangle's sign. Triangles without an azimuth range are skipped.
 template <class F>
 void for_each_fan_azimuth_node(std::span<const SkyFanTriangle> fan, double max_step_rad, F&& f) {
   constexpr double kHalfPi = 1.57079632679489661923;
@@ -39,7 +40,7 @@ void for_each_fan_azimuth_node(std::span<const SkyFanTriangle> fan, double max_s
         const double phi = phi0 + hp * (p + 0.5 * (1 + kGauss4Nodes[g]));
         const double cp = std::cos(phi), sp = std::sin(phi);
         const double e0 = std::clamp(std::atan(-(m.x() * cp + m.y() * sp) / m.z()), 0.0, kHalfPi);
-        f(phi, cp, sp, e0, 0.5 * hp * kGauss4Weights[g]);
+        f(phi, cp, sp, e0, t.sign * 0.5 * hp * kGauss4Weights[g]);
       }
   }
 }

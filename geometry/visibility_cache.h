@@ -59,6 +59,7 @@ class VisibilityCache {
   };
 
   void reserve(std::size_t points, std::size_t bands_per_point);
+  void clear() { points_.clear(), bands_.clear(), intervals_.clear(); }  // keeps the capacity
   void append(const PointResult& r);
   void append(const VisibilityCache& other);  // concatenation in order
 

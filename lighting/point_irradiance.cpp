@@ -7,10 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "geometry/horizon_svf.h"
 #include "geometry/input_error.h"
-#include "geometry/parallel_chunks.h"
-#include "geometry/point_order.h"
+#include "geometry/sky_visibility.h"
 #include "geometry/sky_fan.h"
 #include "geometry/sky_integral.h"
 #include "lighting/colour.h"
@@ -40,84 +38,61 @@ void check_step(double max_step_rad) {
     throw InputError("irradiance: quadrature step " + std::to_string(max_step_rad) + " rad must be finite and > 0");
 }
 
-// A sky ready for both methods: the projected grid (for the band method's lines) and its column
-// tables (for the exact horizon: sky_column_table.h).
+// A sky ready for every method: the projected grid (for the band method's lines) and its column
+// tables (for the exact methods' regions: sky_column_table.h).
 struct SkyTables {
   const ProjectedSkyGrid& grid;
   SkyColumnTable columns;
   SkyTables(const ProjectedSkyGrid& g, int threads) : grid(g), columns(g, threads) {}
 };
 
-// The visible sky of one point, by whichever method computed it: the band method's cache view
-// (exact α-intervals) or the exact horizon's fan of spherical triangles.
-struct VisibleSky {
-  const PointVisibilityView* bands = nullptr;  // set: the band method
-  std::span<const SkyFanTriangle> fan;          // otherwise: the exact horizon
-  Vec3 normal{0, 0, 1};
-  bool by_horizon() const { return bands == nullptr; }
-  // Both channels of the sky integrated over the visible sky: along the band lines (Gauss–Legendre
-  // pieces ≤ max_step_rad), or in azimuth over the fan with the column tables (pieces ≤ a quarter
-  // of it: the one-dimensional quadrature is cheap, and the arcs' elevation e₀(φ) can be steep).
-  void channels(const SkyTables& sky, double max_step_rad, double out[2]) const {
-    if (bands)
-      integrate_irradiance_channels<2>(*bands, [&](const Vec3& d, double* c) { sky.grid.lookup_unit_n<2>(d, c); }, out,
-                                       max_step_rad);
-    else
-      sky.columns.integrate_fan(fan, normal, out, 0.25 * max_step_rad);
+// Both channels of the sky integrated over a point's visible sky: along the band lines
+// (Gauss–Legendre pieces ≤ max_step_rad), or in azimuth over the exact region's signed fan with the
+// column tables (pieces ≤ a quarter of it: the one-dimensional quadrature is cheap, and the arcs'
+// elevation e₀(φ) can be steep). `fan` is scratch.
+void sky_channels(const VisibleSky& sky, const SkyTables& tables, double max_step_rad, std::vector<SkyFanTriangle>& fan,
+                  double out[2]) {
+  if (!sky.exact()) {
+    integrate_irradiance_channels<2>(*sky.bands, [&](const Vec3& d, double* c) { tables.grid.lookup_unit_n<2>(d, c); }, out,
+                                     max_step_rad);
+    return;
   }
-};
+  sky.fan(fan);
+  tables.columns.integrate_fan(fan, sky.normal, out, 0.25 * max_step_rad);
+}
 
-// Every point's visible sky: fills svf and sky_exposure of out[i] and hands (its VisibleSky, the
-// point, a BandVisibility for the exact sun-shadow tests, out[i]) to `fill` for the rest. With the
-// automatic method the exact horizon goes first (geometry/sky_factors.h); the points it declines,
-// and all points with the band method, go through the visibility cache chunk by chunk.
+// Every point's visible sky (geometry/sky_visibility.h): fills svf, sky_exposure and method of
+// out[i] and hands (the sky, the point, its worker — for the sun's look-ups —, out[i]) to `fill`.
 template <class Result, class Fill>
 std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoint> points, const PointIrradianceOptions& options,
                                    const std::function<void(std::size_t, std::size_t)>& progress, Fill&& fill) {
   std::vector<Result> out(points.size());
-  std::vector<char> done(points.size(), 0);
-  if (options.method == SkyFactorsMethod::automatic && !points.empty()) {
-    const ColumnScene& columns = scene.column_scene();
-    struct Worker {
-      HorizonSvf horizon;
-      BandVisibility bands;
-      std::vector<SkyFanTriangle> fan;
-      Worker(const Scene& s, const ColumnScene& c, const VisibilityOptions& o) : horizon(s, c, o.surface_offset_m), bands(s, o) {}
-    };
-    const std::vector<std::uint32_t> order = xy_morton_order(points);  // cache locality; no result changes
-    for_each_in_chunks(
-        points.size(), 32, options.threads, progress,
-        [&] { return std::make_unique<Worker>(scene, columns, options.visibility); },
-        [&](Worker& w, std::size_t k) {
-          const std::size_t i = order[k];
-          SkyFactors f;
-          if (!w.horizon.compute(points[i], f)) return;
-          w.horizon.visible_fan(w.fan);
-          Result& r = out[i];
-          r.svf = f.svf;
-          r.sky_exposure = f.sky_exposure;
-          r.exact_horizon = true;
-          fill(VisibleSky{nullptr, w.fan, points[i].normal}, points[i], w.bands, r);
-          done[i] = 1;
-        });
-  }
-  const PointSubset rest = points_not_done(points, done);
-  const auto rest_progress = [&](std::size_t d, std::size_t) {
-    if (progress) progress(points.size() - rest.points.size() + d, points.size());
-  };
-  for_each_visibility_chunk(scene, rest.points, options.visibility, options.threads, progress ? rest_progress : std::function<void(std::size_t, std::size_t)>{},
-                            [&](std::size_t first, VisibilityCache& chunk, BandVisibility& worker) {
-                              for (std::size_t i = 0; i < chunk.size(); ++i) {
-                                const PointVisibilityView v = chunk.view(i);
-                                const std::size_t k = rest.index[first + i];
-                                Result& r = out[k];
-                                r.svf = sky_view_factor(v);
-                                r.sky_exposure = sky_exposure(v);
-                                fill(VisibleSky{&v, {}, points[k].normal}, points[k], worker, r);
-                              }
-                            });
+  for_each_visible_sky(scene, points, options.visibility, options.method, options.threads, progress, true,
+                       [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
+                         Result& r = out[i];
+                         r.svf = sky.factors.svf;
+                         r.sky_exposure = sky.factors.sky_exposure;
+                         r.method = sky.method;
+                         fill(sky, points[i], worker, r);
+                       });
   return out;
 }
+
+// The sky of an unobstructed horizontal point by each kind of method (the denominator of
+// sky_ratio: the same method and quadrature, so an open horizontal point gives exactly 1).
+struct OpenSky {
+  double exact[2], bands[2];
+  OpenSky(const SkyTables& tables, const PointIrradianceOptions& options) {
+    const Scene empty{TriangleSoup{}};
+    const QueryPoint up{Vec3(0, 0, 0), Vec3(0, 0, 1)};
+    std::vector<SkyFanTriangle> fan;
+    SkyVisibility exact_sky(empty, options.visibility, SkyFactorsMethod::exact);
+    sky_channels(exact_sky.compute(up), tables, options.max_step_rad, fan, exact);
+    SkyVisibility band_sky(empty, options.visibility, SkyFactorsMethod::bands);
+    sky_channels(band_sky.compute(up), tables, options.max_step_rad, fan, bands);
+  }
+  double lx(const VisibleSky& sky) const { return sky.exact() ? exact[1] : bands[1]; }
+};
 
 }  // namespace
 
@@ -131,31 +106,15 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
   const double sun_W_m2 = dn.integral_nm(), sun_lx = luminous(dn);
   const Vec3 s = sky.sun_direction();
 
-  // The denominator of sky_ratio: an unobstructed horizontal point, same method and quadrature
-  // (so an open horizontal point gives exactly 1 by either method).
-  double open_bands[2], open_fan[2];
-  {
-    const Scene empty{TriangleSoup{}};
-    const QueryPoint up{Vec3(0, 0, 0), Vec3(0, 0, 1)};
-    const VisibilityCache open = compute_visibility(empty, std::span<const QueryPoint>(&up, 1), options.visibility, 1);
-    const PointVisibilityView open_view = open.view(0);
-    VisibleSky{&open_view, {}, up.normal}.channels(grid, options.max_step_rad, open_bands);
-    HorizonSvf horizon(empty, empty.column_scene(), options.visibility.surface_offset_m);
-    SkyFactors f;
-    std::vector<SkyFanTriangle> fan;
-    horizon.compute(up, f);
-    horizon.visible_fan(fan);
-    VisibleSky{nullptr, fan, up.normal}.channels(grid, options.max_step_rad, open_fan);
-  }
-
+  const OpenSky open(grid, options);
   return for_each_point<PointIrradiance>(
-      scene, points, options, progress,
-      [&](const VisibleSky& sky_seen, const QueryPoint& q, BandVisibility& worker, PointIrradiance& r) {
+      scene, points, options, progress, [&](const VisibleSky& sky_seen, const QueryPoint& q, SkyVisibility& worker, PointIrradiance& r) {
+        thread_local std::vector<SkyFanTriangle> fan;
         double e[2];
-        sky_seen.channels(grid, options.max_step_rad, e);
+        sky_channels(sky_seen, grid, options.max_step_rad, fan, e);
         r.sky_W_m2 = e[0];
         r.sky_lx = e[1];
-        const double open_lx = sky_seen.by_horizon() ? open_fan[1] : open_bands[1];
+        const double open_lx = open.lx(sky_seen);
         r.sky_ratio = open_lx > 0 ? e[1] / open_lx : 0.0;
         r.cos_incidence = q.normal.dot(s);
         // direction_visible is false for a sun below the horizon or behind the face.
@@ -196,10 +155,11 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
   if (!moments.empty()) sky_hours_tables.emplace(sky_hours, options.threads);
   return for_each_point<PointIrradiation>(
       scene, points, options, progress,
-      [&](const VisibleSky& sky_seen, const QueryPoint& q, BandVisibility& worker, PointIrradiation& r) {
+      [&](const VisibleSky& sky_seen, const QueryPoint& q, SkyVisibility& worker, PointIrradiation& r) {
         if (!moments.empty()) {
+          thread_local std::vector<SkyFanTriangle> fan;
           double e[2];
-          sky_seen.channels(*sky_hours_tables, options.max_step_rad, e);
+          sky_channels(sky_seen, *sky_hours_tables, options.max_step_rad, fan, e);
           r.sky_Wh_m2 = e[0];
           r.sky_lxh = e[1];
         }

@@ -2,22 +2,22 @@
 // Irradiance on the surface of calculation points — the data product of `skyband irradiance`
 // for daylight and urban-climate analysts: per point, on the plane of its normal n,
 //
-//   sky  E_sky = ∫_visible L(ω) (n·ω) dω. Where the scene is a column scene from the point
-//        (geometry/column_scene.h; method automatic, the default), over the exact visible sky of
-//        the horizon method (a fan of spherical triangles, geometry/sky_fan.h) with the sky's
-//        column tables (sky_column_table.h: the elevation integrals tabulated once per sky, a
-//        Gauss–Legendre quadrature in azimuth per point, pieces ≤ max_step_rad/4); svf and
-//        sky_exposure are then exact. Elsewhere
+//   sky  E_sky = ∫_visible L(ω) (n·ω) dω over the point's visible sky (geometry/visible_sky.h,
+//        computed as geometry/sky_visibility.h decides; method automatic, the default, is exact at
+//        every point). Over an exact region (a signed fan of spherical triangles,
+//        geometry/sky_fan.h) with the sky's column tables (sky_column_table.h: the elevation
+//        integrals tabulated once per sky, a Gauss–Legendre quadrature in azimuth per point,
+//        pieces ≤ max_step_rad/4); svf and sky_exposure are then exact. With the band method
 //        = Σ_b w_b Σ_visible ∫ L(ω(α, δ_b)) sin²α dα   (seed eq. 1)
-//        over the point's visibility cache (exact occluded α-intervals, refined bands). The line
-//        integrals use the Gauss–Legendre quadrature of geometry/sky_integral.h
-//        (integrate_irradiance_channels) instead of per-band tables (sky_lut.h): a refined band
-//        layout differs from point to point, so per-layout tables would not be shared. L is the
-//        sky model resampled on the stereographic grid (sky_radiance_grid.h) and projected to
-//        two channels.
+//        over the point's band lines (exact occluded α-intervals, refined bands), with the
+//        Gauss–Legendre quadrature of geometry/sky_integral.h (integrate_irradiance_channels)
+//        instead of per-band tables (sky_lut.h): a refined band layout differs from point to point,
+//        so per-layout tables would not be shared. L is the sky model resampled on the
+//        stereographic grid (sky_radiance_grid.h) and projected to two channels.
 //   sun  E_sun = E_n · (n·s) · V  where n·s > 0, else 0; E_n the direct-normal irradiance of the
 //        sun (SkyModel::sun_direct_normal) and V = 1 when the direction of the sun's centre is
-//        unoccluded (BandVisibility::direction_visible: the exact shadow test; the sun is a point).
+//        unoccluded: a look-up in the point's visible sky, the exact sample-plane test near its
+//        boundary (SkyVisibility::direction_visible; the sun is a point).
 //
 // Channels: radiometric W·m⁻² over the model's 380–780 nm grid (trapezoid rule, as
 // Spectrum::integral_nm) and photometric lx (K_m·∫ E ȳ dλ, as colour.h luminous()).
@@ -30,6 +30,7 @@
 
 #include "geometry/band_visibility.h"
 #include "geometry/sky_factors.h"
+#include "geometry/visible_sky.h"
 #include "lighting/sky_model.h"
 
 namespace skyband {
@@ -48,7 +49,7 @@ struct PointIrradiance {
   // overcast sky this is the vertical sky component of a vertical face (BRE 209, BS 8206-2:
   // 39.6 % unobstructed) and the sky factor of a horizontal one.
   double sky_ratio = 0;
-  bool exact_horizon = false;  // computed by the exact horizon (else by the band method)
+  SkyMethod method = SkyMethod::exact_union;  // how the visible sky was computed
 };
 
 struct PointIrradianceOptions {
@@ -89,7 +90,7 @@ struct PointIrradiation {
   double sun_Wh_m2 = 0;   // direct sun irradiation, W·h·m⁻² (380–780 nm)
   double sky_lxh = 0;     // diffuse sky light exposure, lx·h
   double sun_lxh = 0;     // direct sun light exposure, lx·h
-  bool exact_horizon = false;  // computed by the exact horizon (else by the band method)
+  SkyMethod method = SkyMethod::exact_union;  // how the visible sky was computed
 };
 
 // Builds each moment's SkyModel in turn (InputError for invalid parameters or hours, naming the

@@ -104,7 +104,7 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --bands 0", "--bands"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --tolerance -1", "--tolerance"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --method exact", "--method"},
+      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --method best", "--method"},
       {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
        "no_such_dir"},
   }, d / "out.csv");
@@ -119,7 +119,7 @@ BOOST_AUTO_TEST_CASE(method_summary_on_stderr) {
   std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n5,5,5\n";
   const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"));
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
-  BOOST_TEST(r.err.find("1 point by the exact horizon (1 column solid, 0 other components), 1 by the exact union of occluders, 0 by bands") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("1 point exact by the horizon of closed buildings, 1 point exact by the union of the occluders' projections") != std::string::npos, r.err);
   const std::string text = slurp(d / "o.csv");
   BOOST_TEST(text.substr(text.rfind('\n', text.size() - 2) + 1) == "5,5,5,0,0\n");  // inside: nothing seen
 }
