@@ -27,7 +27,9 @@
 #include "geometry/input_error.h"
 #include "geometry/column_scene.h"
 #include "geometry/sky_factors.h"
+#include "geometry/horizon_profile.h"
 #include "geometry/sky_integral.h"
+#include "io/atomic_file.h"
 #include "io/points_csv.h"
 
 namespace skyband::cli {
@@ -37,7 +39,35 @@ namespace {
 struct SvfArgs {
   PointJobArgs job;
   bool demo = false;
+  std::string horizon;        // --horizon FILE.csv
+  double horizon_step = 1.0;  // --horizon-step DEG
 };
+
+// --horizon: rows point,azimuth_deg,elevation_deg (geometry/horizon_profile.h), written atomically.
+void write_horizon(const SvfArgs& a, const Scene& scene, const PointsTable& table, const VisibilityOptions& opt) {
+  const std::size_t m = horizon_azimuth_count(a.horizon_step);
+  Progress progress("horizon", !a.job.quiet);
+  write_atomically(a.horizon, [&](const std::filesystem::path& tmp) {
+    std::FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) throw InputError("--horizon " + a.horizon + ": cannot write");
+    std::fprintf(f, "point,azimuth_deg,elevation_deg\n");
+    bool ok = true;
+    try {
+      for_each_horizon_profile(scene, table.points, opt, a.horizon_step, a.job.threads,
+                               [&](std::size_t d, std::size_t t) { progress(d, t); },
+                               [&](std::size_t first, std::size_t count, std::span<const double> e) {
+                                 for (std::size_t i = 0; i < count; ++i)
+                                   for (std::size_t k = 0; k < m; ++k)
+                                     ok = std::fprintf(f, "%zu,%.10g,%.6f\n", first + i, double(k) * a.horizon_step, e[i * m + k]) > 0 && ok;
+                               });
+    } catch (...) {
+      std::fclose(f);
+      throw;
+    }
+    ok = std::fclose(f) == 0 && ok;
+    if (!ok) throw InputError("--horizon " + a.horizon + ": write failed (disk full?)");
+  });
+}
 
 std::string method_summary(const SkyFactorsRun& run) { return cli::method_summary(run.by_horizon, run.by_exact, run.by_bands); }
 
@@ -65,6 +95,7 @@ void run_demo(const SvfArgs& a) {
 void run(const SvfArgs& a) {
   if (a.demo) return run_demo(a);
   a.job.require_files("svf", " (or --demo)");
+  if (!a.horizon.empty()) (void)horizon_azimuth_count(a.horizon_step);  // a bad step fails before the work
   const VisibilityOptions opt = a.job.visibility_options();
   TriangleSoup soup = a.job.load_meshes();
   const PointsTable table = read_points_csv(a.job.points);
@@ -83,6 +114,7 @@ void run(const SvfArgs& a) {
     values[1][i] = factors[i].sky_exposure;
   }
   write_points_csv(a.job.out, table, {"svf", "sky_exposure"}, values);
+  if (!a.horizon.empty()) write_horizon(a, scene, table, opt);
   if (!a.job.quiet) {
     const std::size_t n = table.points.size();
     const double mean = n ? std::accumulate(values[0].begin(), values[0].end(), 0.0) / double(n) : 0.0;
@@ -102,6 +134,11 @@ CommandRegistration registration{"svf", [](CLI::App& app) {
       "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
   args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
+  cmd->add_option("--horizon", args->horizon,
+                  "Also write every point's horizon profile: CSV rows point,azimuth_deg,elevation_deg (point: 0-based\n"
+                  "row of the points file; azimuth clockwise from north; the highest occluded elevation, sky below an\n"
+                  "overhang not counted), written atomically");
+  cmd->add_option("--horizon-step", args->horizon_step, "Azimuth step of --horizon in degrees (default 1)");
   cmd->callback([args] { run(*args); });
   return cmd;
 }};
