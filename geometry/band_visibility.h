@@ -23,15 +23,17 @@ namespace skyband {
 struct VisibilityOptions {
   // Initial number of equal-weight bands (method.md §2). Must be ≥ 1.
   int bands = 32;
-  // Absolute SVF error target for adaptive band refinement; 0 disables refinement (then each band
-  // is one sample plane at its weight median: the paper's method). With refinement, every band is
-  // sampled at its two edges and its δ-midpoint and integrated with the three-node rule for the
-  // weight cos(δ − β) (exact for f quadratic in δ); its error is estimated as |rule − midpoint|/π
-  // (more for bands against the face's own plane), and the worst bands are split — at the pencil
-  // angle of an axis-parallel edge when the lines show a step there, else at the δ-midpoint —
-  // until the estimated total is ≤ tolerance. Measured: default max error 4.3e-4 against a
-  // 4096-band reference on city points (bench_visibility_profile), ≤ 1e-3 against the exact
-  // oracle (bench_svf). docs/geometry.md has the derivation.
+  // Absolute error target for adaptive band refinement, for the SVF and the sky exposure alike; 0
+  // disables refinement (then each band is one sample plane at its weight median: the paper's
+  // method). With refinement, every band is sampled at its two edges and its δ-midpoint and
+  // integrated with the three-node rule for the weight cos(δ − β) (SVF; exact for f quadratic in
+  // δ) and Simpson's rule in δ (exposure); each error is estimated as |rule − midpoint| (for the
+  // bands against the face's own plane or the horizon, at least the full variation of their lines:
+  // a low skyline far away shows on the horizon's line only), and the worst bands are split — at
+  // the pencil angle of an axis-parallel edge when the lines show a step there, else at the
+  // δ-midpoint — until both estimated totals are ≤ tolerance/2. Measured against the exact union
+  // (band_tolerance_test, bench_visibility_profile): the largest error ≤ 0.6·tolerance on city,
+  // terrain and low-skyline points. docs/geometry.md has the derivation.
   double tolerance = 5e-4;
   // A band is split at most this many times.
   int max_refine_depth = 10;

@@ -14,11 +14,10 @@ double sky_view_factor(const PointVisibilityView& v) {
 }
 
 double sky_exposure(const PointVisibilityView& v) {
-  // Solid angle = Σ_b Δδ_b ∫_visible sin α dα, Δδ_b the band's angular width.
-  const BandFrame& f = v.frame();
+  // Solid angle = Σ_b w_b ∫_visible sin α dα, w_b the line's weight in δ (BandRecord).
   double omega = 0;
   for (std::size_t b = 0; b < v.band_count(); ++b) {
-    const double width = f.delta_at(v.band(b).s1) - f.delta_at(v.band(b).s0);
+    const double width = v.band(b).exposure_weight;
     double line = 0;
     for (const VisibleInterval& iv : v.visible(b))
       line += std::cos(clamp_alpha(iv.alpha0_rad)) - std::cos(clamp_alpha(iv.alpha1_rad));

@@ -23,6 +23,9 @@ struct BandRecord {
   float s0, s1;                 // weight-space edges (s = sin(δ − β)), weight = s1 − s0
   float delta_rad;              // sample plane of the band (its weight median)
   std::uint32_t first_interval; // index into the interval array
+  // The line's weight in δ (radians) for the solid angle Σ_b w_b ∫_visible sin α dα: with
+  // refinement Simpson's weights (Δδ/6, 4Δδ/6, Δδ/6) per band, else the band's δ-width.
+  float exposure_weight = 0;
 };
 
 struct PointRecord {

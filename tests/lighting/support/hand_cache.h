@@ -24,6 +24,7 @@ inline VisibilityCache::PointResult hand_point(const Vec3& normal, int band_coun
     rec.s0 = static_cast<float>(bands[b].s0);
     rec.s1 = static_cast<float>(bands[b].s1);
     rec.delta_rad = static_cast<float>(frame.delta_at(bands[b].s_centre()));
+    rec.exposure_weight = static_cast<float>(frame.delta_at(bands[b].s1) - frame.delta_at(bands[b].s0));
     rec.first_interval = static_cast<std::uint32_t>(r.intervals.size());
     if (visible) {
       for (auto [a0, a1] : visible(static_cast<int>(b), rec.delta_rad))
