@@ -225,20 +225,85 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       s.has_reference = true;
     }
     s.z_min = std::min({s.z_min, a.z(), b.z(), c.z()});
-    s.volume6 += (a - s.reference).dot((b - s.reference).cross(c - s.reference));
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t p = w[k], q = w[(k + 1) % 3];
       if (p != q) edges.push_back({std::min(p, q), std::max(p, q), p < q, root[t], t, std::uint8_t(k)});
     }
   }
-  // Closed and consistently oriented: every undirected edge exactly twice, once each way.
+  // Closed and orientable: every undirected edge exactly twice — or once, when both its ends lie
+  // in the component's floor plane (a floor left open: buildings modelled as walls and a roof
+  // standing on the ground). The files' windings need not agree: each triangle gets a flip bit
+  // that makes the two triangles of every edge traverse it in opposite directions (a walk over the
+  // edges), and a component where no such bits exist is not a column solid.
   std::sort(edges.begin(), edges.end(),
             [](const DirectedEdge& x, const DirectedEdge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
+  std::vector<std::uint32_t> adjacency_start(nt + 1, 0);
+  std::vector<std::pair<std::uint32_t, bool>> adjacency;  // (neighbour, the two must differ in flip)
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
-    if (j - i != 2 || edges[i].forward == edges[i + 1].forward) state[edges[i].component].closed_ok = false;
+    const DirectedEdge& e = edges[i];
+    bool ok = j - i == 2;
+    if (j - i == 1) {
+      const auto& te = soup.triangles[e.triangle];
+      const double zf = state[e.component].z_min;
+      ok = soup.vertices[te[e.side]].z() == zf && soup.vertices[te[(e.side + 1) % 3]].z() == zf;
+    } else if (ok) {
+      ++adjacency_start[edges[i].triangle + 1];
+      ++adjacency_start[edges[i + 1].triangle + 1];
+    }
+    if (!ok) state[e.component].closed_ok = false;
     i = j;
+  }
+  for (std::size_t t = 0; t < nt; ++t) adjacency_start[t + 1] += adjacency_start[t];
+  adjacency.resize(adjacency_start[nt]);
+  {
+    std::vector<std::uint32_t> fill(adjacency_start.begin(), adjacency_start.end() - 1);
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+      if (j - i == 2) {
+        const DirectedEdge &e = edges[i], &f = edges[i + 1];
+        const bool differ = e.forward == f.forward;  // same direction: one of the two must flip
+        adjacency[fill[e.triangle]++] = {f.triangle, differ};
+        adjacency[fill[f.triangle]++] = {e.triangle, differ};
+      }
+      i = j;
+    }
+  }
+  std::vector<std::int8_t> flip(nt, -1);
+  {
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t t0 = 0; t0 < nt; ++t0) {
+      if (flip[t0] >= 0 || !state[root[t0]].closed_ok) continue;
+      flip[t0] = 0;
+      queue.assign(1, t0);
+      while (!queue.empty()) {
+        const std::uint32_t t = queue.back();
+        queue.pop_back();
+        for (std::uint32_t k = adjacency_start[t]; k < adjacency_start[t + 1]; ++k) {
+          const auto [u, differ] = adjacency[k];
+          const std::int8_t want = std::int8_t(flip[t] ^ (differ ? 1 : 0));
+          if (flip[u] < 0) {
+            flip[u] = want;
+            queue.push_back(u);
+          } else if (flip[u] != want) {
+            state[root[t]].closed_ok = false;  // not orientable
+          }
+        }
+      }
+    }
+  }
+  const auto winding = [&](std::uint32_t t) { return flip[t] == 1 ? -1 : 1; };
+  // The signed volume relative to a point of the floor plane z = z_min: for a surface closed but
+  // for a floor left open (boundary edges in that plane), the volume of the solid capped there — a
+  // cap in the plane adds nothing relative to a point in it.
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    ComponentState& s = state[root[t]];
+    const auto& tri = soup.triangles[t];
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    const Vec3 r(s.reference.x(), s.reference.y(), s.z_min);
+    s.volume6 += winding(t) * (a - r).dot((b - r).cross(c - r));
   }
 
   // Down-facing triangles (outward normal below the horizontal) must lie in the floor plane.
@@ -250,7 +315,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     if (!column[r]) continue;
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    const int up = exact_orient2d_sign(a, b, c) * (state[r].volume6 > 0 ? 1 : -1);
+    const int up = exact_orient2d_sign(a, b, c) * winding(t) * (state[r].volume6 > 0 ? 1 : -1);
     const double zf = state[r].z_min;
     if (up < 0 && !(a.z() == zf && b.z() == zf && c.z() == zf)) column[r] = 0;
   }
@@ -300,8 +365,9 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
     // winding normal's side; the outward sign turns that into "front-facing".
     const int out_sign = state[e.component].volume6 > 0 ? 1 : -1;
-    s.facing_sign[0] = std::int8_t(-out_sign * (e.forward ? 1 : -1));
-    s.facing_sign[1] = std::int8_t(-out_sign * (f.forward ? 1 : -1));
+    const bool e_forward = e.forward != (flip[e.triangle] == 1), f_forward = f.forward != (flip[f.triangle] == 1);
+    s.facing_sign[0] = std::int8_t(-out_sign * (e_forward ? 1 : -1));
+    s.facing_sign[1] = std::int8_t(-out_sign * (f_forward ? 1 : -1));
     for (int k = 0; k < 2; ++k) {
       const Vec3& c = c3[k];
       s.face_kind[k] = SilhouetteEdge::kGeneral;

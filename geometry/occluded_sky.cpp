@@ -565,11 +565,15 @@ void OccludedSky::update_bins(int g, double lo, double hi) const {
     }
     const std::uint32_t ftop = q.n >= 4 ? s.pool[q.off + 3] : kGround;  // kGround: no floating interval
     const bool floating = ftop != kGround;
-    const bool optimistic = floating && ftop != kZenith;  // a gap that may close: the first floating interval's top
+    // If every gap closed: the top of the highest interval below the zenith (under a ceiling, of
+    // the one below it).
+    const std::uint32_t* ids = s.pool.data() + q.off;
+    const std::uint32_t otop = q.n < 4 ? q.top : ids[q.n - 1] != kZenith ? ids[q.n - 1] : ids[q.n - 3];
     double fleft = !floating ? -kInf : starts_inside ? value(ftop, q.wx, q.wy) : value(ftop, edge_x_[b], edge_y_[b]);
-    const auto account = [&](int bin, double right, double fright) {
+    double oleft = starts_inside ? value(otop, q.wx, q.wy) : value(otop, edge_x_[b], edge_y_[b]);
+    const auto account = [&](int bin, double right, double fright, double oright) {
       gmin_[bin] = std::min({gmin_[bin], left, right});
-      ohi_[bin] = std::min(ohi_[bin], optimistic ? std::min(fleft, fright) : std::min(left, right));
+      ohi_[bin] = std::min({ohi_[bin], oleft, oright});
       fhi_[bin] = std::min({fhi_[bin], fleft, fright});
       flo_[bin] = std::max(flo_[bin], q.flo);
       cmax_[bin] = std::max(cmax_[bin], q.cmax);
@@ -577,10 +581,11 @@ void OccludedSky::update_bins(int g, double lo, double hi) const {
     for (; b <= b1 && double(b + 1) / kBinsPerUnit < q_end; ++b) {  // bins whose end lies inside the piece
       const double edge = value(q.top, edge_x_[b + 1], edge_y_[b + 1]);
       const double fedge = floating ? value(ftop, edge_x_[b + 1], edge_y_[b + 1]) : -kInf;
-      account(b, edge, fedge);
-      left = edge, fleft = fedge;
+      const double oedge = value(otop, edge_x_[b + 1], edge_y_[b + 1]);
+      account(b, edge, fedge, oedge);
+      left = edge, fleft = fedge, oleft = oedge;
     }
-    if (b <= b1) account(b, q.g1, floating ? value(ftop, ex, ey) : -kInf);  // the bin holding its end
+    if (b <= b1) account(b, q.g1, floating ? value(ftop, ex, ey) : -kInf, value(otop, ex, ey));  // the bin holding its end
   }
   const double* m = gmin_.data() + first_bin;
   double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];

@@ -6,6 +6,7 @@
 #include "geometry/column_scene.h"
 #include "geometry/exact_sky.h"
 #include "geometry/horizon_svf.h"
+#include "geometry/occluder_set.h"
 #include "geometry/parallel_chunks.h"
 #include "geometry/point_order.h"
 #include "geometry/sky_integral.h"
@@ -14,8 +15,14 @@ namespace skyband {
 
 SkyVisibility::SkyVisibility(const Scene& scene, const VisibilityOptions& options, SkyFactorsMethod method)
     : scene_(scene), options_(options), method_(method) {
-  if (method == SkyFactorsMethod::automatic && scene.column_scene().column_solids > 0)
-    horizon_ = std::make_unique<HorizonSvf>(scene, scene.column_scene(), options.surface_offset_m);
+  // Both exact methods give the same values to rounding; the horizon is the cheaper where it
+  // applies, unless the column solids' faces are finely split (then its silhouette candidates,
+  // cut at every split, outnumber the merged occluders of the union: a wall split 11 × 11 is one
+  // occluder but 11 candidate edges along its top).
+  const ColumnScene& columns = scene.column_scene();
+  if (method == SkyFactorsMethod::automatic && columns.column_solids > 0 &&
+      columns.edges.size() <= 2 * scene.occluders().occluders.size())
+    horizon_ = std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m);
   if (method != SkyFactorsMethod::bands) exact_ = std::make_unique<ExactSky>(scene, options.surface_offset_m);
 }
 

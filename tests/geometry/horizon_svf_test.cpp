@@ -88,6 +88,20 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
   for (auto& t : inward.triangles) std::swap(t[1], t[2]);
   BOOST_TEST(classify_column_scene(inward).column_solids == 1u);
 
+  // Four walls and a roof, no floor (the boundary lies in the floor plane: the solid capped there),
+  // with one wall wound the other way (windings are made consistent, not read): a column solid;
+  // without a wall instead (the boundary rises above the floor): not one.
+  TriangleSoup floorless = box;
+  floorless.triangles.erase(floorless.triangles.begin(), floorless.triangles.begin() + 2);
+  std::swap(floorless.triangles[2][1], floorless.triangles[2][2]);
+  std::swap(floorless.triangles[3][1], floorless.triangles[3][2]);
+  c = classify_column_scene(floorless);
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.edges.size() == 4u);
+  TriangleSoup wall_missing = floorless;
+  wall_missing.triangles.erase(wall_missing.triangles.begin() + 2, wall_missing.triangles.begin() + 4);
+  BOOST_TEST(classify_column_scene(wall_missing).column_solids == 0u);
+
   // A box floating above a grounded one: both column solids, floors 0 and 4.
   TriangleSoup two = box;
   append_box(two, Vec3(10, 0, 4), Vec3(11, 1, 6));
@@ -366,4 +380,27 @@ BOOST_AUTO_TEST_CASE(other_components_hidden_behind_column_solids_do_not_matter)
   BOOST_TEST(run.by_exact == 1u);
   const double exact = svf_union_oracle(pts[1].position + 1e-6 * pts[1].normal, pts[1].normal, soup);
   BOOST_TEST(std::abs(run.factors[1].svf - exact) < kExact);
+}
+
+BOOST_AUTO_TEST_CASE(floorless_boxes_with_random_windings_on_a_ground) {
+  // The synthetic city most tools are tried on — boxes of four walls and a roof, no floor, on one
+  // ground quad — with every face's winding drawn at random: a column scene from street and facade
+  // points, exact against the union oracle.
+  gen::OpenBoxCityParams p;
+  p.per_side = 4;
+  gen::OpenBoxCity city = gen::make_open_box_city(p);
+  gen::Rng rng(12);
+  for (std::size_t t = 0; t + 1 < city.soup.triangles.size(); t += 2)
+    if (rng.uniform() < 0.5)
+      for (std::size_t k : {t, t + 1}) std::swap(city.soup.triangles[k][1], city.soup.triangles[k][2]);
+  const Scene scene(city.soup);
+  BOOST_TEST(scene.column_scene().column_solids == 16u);
+  std::vector<QueryPoint> pts = gen::open_city_street_points(city, 8, 3);
+  for (const QueryPoint& q : gen::open_city_facade_points(city, 6, 4)) pts.push_back(q);
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(run.by_horizon == pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double exact = svf_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, city.soup);
+    BOOST_TEST(std::abs(run.factors[i].svf - exact) < kExact, "point " << i << ": " << run.factors[i].svf << " oracle " << exact);
+  }
 }
