@@ -4,6 +4,7 @@
 # SKYBAND_BUILD_DIR selects the build folder (default: build-bench, always Release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scripts/install-deps.sh --bench
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build-bench}
 GEN=()
 command -v ninja >/dev/null && GEN=(-G Ninja)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages skyband builds against, only those that are missing.
-# Why each one is in docs/dependencies.md (and the README).
+# Why each one is in the README. Usage: scripts/install-deps.sh [--bench]
+# (--bench: also Embree, which only the Monte Carlo baseline benchmark uses).
 set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
@@ -15,6 +16,7 @@ PACKAGES=(
   nlohmann-json3-dev                      # --json output, reports
   libtomlplusplus-dev                     # scene files
 )
+if [ "${1:-}" = "--bench" ]; then PACKAGES+=(libembree-dev); fi   # bench_sky_vs_monte_carlo's baseline
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
