@@ -15,26 +15,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::uint32_t kNoCircle = 0xffffffffu;  // an edge in a vertical plane through the point
 
-// Azimuth range (diamond angles lo ≤ hi, hi may exceed 4) of an xy box seen from outside it
-// (offsets x0 ≤ x1, y0 ≤ y1 from the point; not all containing 0).
-void box_azimuths(double x0, double x1, double y0, double y1, double& lo, double& hi) {
-  double sx, sy, ex, ey;
-  if (y0 > 0) {  // box above the point
-    sx = x1, sy = x1 > 0 ? y0 : y1;
-    ex = x0, ey = x0 < 0 ? y0 : y1;
-  } else if (y1 < 0) {  // below
-    sx = x0, sy = x0 < 0 ? y1 : y0;
-    ex = x1, ey = x1 > 0 ? y1 : y0;
-  } else if (x0 > 0) {  // right, straddling y = 0
-    sx = x0, sy = y0, ex = x0, ey = y1;
-  } else {  // left, straddling y = 0
-    sx = x1, sy = y1, ex = x1, ey = y0;
-  }
-  lo = diamond_angle(sx, sy);
-  hi = diamond_angle(ex, ey);
-  if (hi < lo) hi += 4;  // through t = 0
-}
-
 double node_distance2(const Aabb& box, const Vec3& p) {
   const double dx = std::max({box.lo.x() - p.x(), p.x() - box.hi.x(), 0.0});
   const double dy = std::max({box.lo.y() - p.y(), p.y() - box.hi.y(), 0.0});
@@ -85,7 +65,7 @@ bool ExactSky::node_bounds(const Aabb& box, Bounds& out) const {
     const double fx = std::max(std::abs(x0), std::abs(x1)), fy = std::max(std::abs(y0), std::abs(y1));
     out.bottom = z0 / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
   }
-  box_azimuths(x0, x1, y0, y1, out.lo, out.hi);
+  box_azimuth_range(x0, x1, y0, y1, out.lo, out.hi);
   return true;
 }
 
@@ -131,7 +111,7 @@ void ExactSky::project(const Occluder& o) {
       bottom = zmin / std::sqrt(fx * fx + fy * fy) * (1 - 1e-12);
     }
     double lo, hi;
-    box_azimuths(x0, x1, y0, y1, lo, hi);
+    box_azimuth_range(x0, x1, y0, y1, lo, hi);
     if (sky_.hidden(lo, hi, top, bottom)) return;
   }
   if (o.upper_count >= 2 && o.lower_top_z <= p.z()) {

@@ -58,6 +58,28 @@ inline void diamond_direction(double t, double& wx, double& wy) {
   wy = y * r;
 }
 
+// Azimuth range [lo, hi] (diamond angles, lo ≤ hi, hi may exceed 4: through t = 0) of an xy box
+// seen from outside it, the box given by its offsets x0 ≤ x1, y0 ≤ y1 from the point (not all
+// containing 0): from its first corner counter-clockwise to its last, which depend on where the
+// point lies around it. Less than a half turn.
+inline void box_azimuth_range(double x0, double x1, double y0, double y1, double& lo, double& hi) {
+  double sx, sy, ex, ey;
+  if (y0 > 0) {  // box above the point
+    sx = x1, sy = x1 > 0 ? y0 : y1;
+    ex = x0, ey = x0 < 0 ? y0 : y1;
+  } else if (y1 < 0) {  // below
+    sx = x0, sy = x0 < 0 ? y1 : y0;
+    ex = x1, ey = x1 > 0 ? y1 : y0;
+  } else if (x0 > 0) {  // right, straddling y = 0
+    sx = x0, sy = y0, ex = x0, ey = y1;
+  } else {  // left, straddling y = 0
+    sx = x1, sy = y1, ex = x1, ey = y0;
+  }
+  lo = diamond_angle(sx, sy);
+  hi = diamond_angle(ex, ey);
+  if (hi < lo) hi += 4;
+}
+
 class HorizonEnvelope {
  public:
   static constexpr int kFinePerCoarse = 32;  // a multiple of 4

@@ -144,23 +144,8 @@ struct HorizonSvf::Impl {
     const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
     if (dx == 0 && dy == 0) return false;
     const double bound = (box.hi.z() - p.z()) / std::sqrt(dx * dx + dy * dy) * (1 + 1e-12);
-    // Azimuth range of the box seen from outside it (less than π): from its first corner
-    // counter-clockwise to its last, which depend on where p lies around it.
-    double sx, sy, ex, ey;
-    if (y0 > 0) {                    // box above p
-      sx = x1, sy = x1 > 0 ? y0 : y1;
-      ex = x0, ey = x0 < 0 ? y0 : y1;
-    } else if (y1 < 0) {             // below
-      sx = x0, sy = x0 < 0 ? y1 : y0;
-      ex = x1, ey = x1 > 0 ? y1 : y0;
-    } else if (x0 > 0) {             // right, straddling y = 0
-      sx = x0, sy = y0, ex = x0, ey = y1;
-    } else {                         // left, straddling y = 0
-      sx = x1, sy = y1, ex = x1, ey = y0;
-    }
-    const double lo = diamond_angle(sx, sy);
-    double hi = diamond_angle(ex, ey);
-    if (hi < lo) hi += 4;  // through t = 0
+    double lo, hi;
+    box_azimuth_range(x0, x1, y0, y1, lo, hi);
     return env.hidden_below(lo, hi, bound);
   }
 
