@@ -9,6 +9,7 @@
 
 #include "geometry/disjoint_sets.h"
 #include "geometry/exact_sign.h"
+#include "geometry/grouped_bvh.h"
 #include "geometry/welding.h"
 
 namespace skyband {
@@ -37,101 +38,24 @@ bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sc * sd < 0;
 }
 
-// BVH over the edges: first over whole solids (median split of their boxes' centres along the
-// longest axis), then, inside a solid with more than 4 edges, over its edges the same way; leaves
-// hold ≤ 4 edges of one solid, so a leaf's box is (part of) one building's. Deterministic,
-// O(n log n); `edges` is reordered (grouped by solid, then into leaf order).
 struct Candidate {
   SilhouetteEdge edge;
   std::array<Vec3, 2> c;  // the faces' third vertices
 };
 
-void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, std::vector<std::uint32_t>& edge_solid) {
-  out.edge_nodes.clear();
-  if (edges.empty()) return;
-  {  // group the edges by solid (stable: the order within a solid is kept)
-    std::vector<std::uint32_t> order(edges.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return edge_solid[x] < edge_solid[y]; });
-    std::vector<Candidate> sorted(edges.size());
-    std::vector<std::uint32_t> sorted_solid(edges.size());
-    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = edges[order[i]], sorted_solid[i] = edge_solid[order[i]];
-    edges.swap(sorted);
-    edge_solid.swap(sorted_solid);
+// BVH over the edges (geometry/grouped_bvh.h): leaves hold ≤ 4 edges of one solid, so a leaf's
+// box is (part of) one building's; `edges` is reordered into leaf order.
+void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, const std::vector<std::uint32_t>& edge_solid) {
+  std::vector<Aabb> boxes(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    boxes[i].extend(edges[i].edge.a);
+    boxes[i].extend(edges[i].edge.b);
   }
-  struct Group {
-    std::uint32_t first, count;
-    Aabb box;
-  };
-  std::vector<Group> groups;
-  for (std::uint32_t i = 0; i < edges.size();) {
-    std::uint32_t j = i;
-    Group g{i, 0, {}};
-    while (j < edges.size() && edge_solid[j] == edge_solid[i]) {
-      g.box.extend(edges[j].edge.a);
-      g.box.extend(edges[j].edge.b);
-      ++j;
-    }
-    g.count = j - i;
-    groups.push_back(g);
-    i = j;
-  }
-  const auto longest = [](const Aabb& b) {
-    const Vec3 e = b.hi - b.lo;
-    return e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
-  };
-  struct Task {
-    std::uint32_t node, first, count;
-    bool over_groups;  // [first, first + count) of groups, or of edges (inside one solid)
-  };
-  out.edge_nodes.push_back({});
-  std::vector<Task> stack{{0, 0, std::uint32_t(groups.size()), true}};
-  while (!stack.empty()) {
-    Task task = stack.back();
-    stack.pop_back();
-    if (task.over_groups && task.count == 1) task = {task.node, groups[task.first].first, groups[task.first].count, false};
-    Aabb box, centres;
-    for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
-      if (task.over_groups) {
-        box.extend(groups[i].box);
-        centres.extend(groups[i].box.centre());
-      } else {
-        box.extend(edges[i].edge.a);
-        box.extend(edges[i].edge.b);
-        centres.extend(0.5 * (edges[i].edge.a + edges[i].edge.b));
-      }
-    }
-    out.edge_nodes[task.node].box = box;
-    if (!task.over_groups && task.count <= 4) {
-      out.edge_nodes[task.node].first = task.first;
-      out.edge_nodes[task.node].count = task.count;
-      continue;
-    }
-    const int axis = longest(centres);
-    const std::uint32_t half = task.count / 2;
-    if (task.over_groups) {
-      auto begin = groups.begin() + task.first;
-      std::nth_element(begin, begin + half, begin + task.count, [&](const Group& x, const Group& y) {
-        const double cx = x.box.centre()[axis], cy = y.box.centre()[axis];
-        return cx != cy ? cx < cy : x.first < y.first;
-      });
-    } else {
-      auto begin = edges.begin() + task.first;
-      std::nth_element(begin, begin + half, begin + task.count, [&](const Candidate& cx_, const Candidate& cy_) {
-        const SilhouetteEdge &x = cx_.edge, &y = cy_.edge;
-        const double cx = 0.5 * (x.a[axis] + x.b[axis]), cy = 0.5 * (y.a[axis] + y.b[axis]);
-        if (cx != cy) return cx < cy;
-        return std::tie(x.a[0], x.a[1], x.a[2], x.b[0], x.b[1], x.b[2]) < std::tie(y.a[0], y.a[1], y.a[2], y.b[0], y.b[1], y.b[2]);
-      });
-    }
-    const std::uint32_t left = std::uint32_t(out.edge_nodes.size());
-    out.edge_nodes.push_back({});
-    out.edge_nodes.push_back({});
-    out.edge_nodes[task.node].first = left;
-    out.edge_nodes[task.node].count = 0;
-    stack.push_back({left + 1, task.first + half, task.count - half, task.over_groups});
-    stack.push_back({left, task.first, half, task.over_groups});
-  }
+  const std::vector<std::uint32_t> order =
+      build_grouped_bvh(boxes, edge_solid, 4, 4, out.edge_nodes, [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
+  std::vector<Candidate> sorted(edges.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = edges[order[k]];
+  edges.swap(sorted);
 }
 
 // Median-split BVH over triangles (their boxes' centres, longest axis; leaves of ≤ 4);

@@ -6,6 +6,7 @@
 
 #include "geometry/disjoint_sets.h"
 #include "geometry/exact_sign.h"
+#include "geometry/grouped_bvh.h"
 #include "geometry/welding.h"
 
 namespace skyband {
@@ -197,104 +198,21 @@ void set_vertical_chains(Occluder& o) {
   o.across[1] = std::uint8_t(rt);
 }
 
-// BVH over the occluders: first over whole connected components (median split of their boxes'
-// centres along the longest axis), then inside a component with more than a leaf's worth over its
-// occluders the same way; leaves hold ≤ 4 occluders of one component, so a leaf's box is (part
-// of) one building's and a hidden building is skipped whole. Deterministic; `set.occluders` is
-// reordered into leaf order.
+// The BVH (geometry/grouped_bvh.h): a component of up to kComponentLeafSize occluders (a box:
+// four walls and a roof) is one leaf, lowest first — walls standing on the ground before the roof
+// they carry, which they then mostly hide. `set.occluders` is reordered into leaf order.
 void build_bvh(OccluderSet& set, const std::vector<std::uint32_t>& component) {
-  const auto n = std::uint32_t(set.occluders.size());
-  if (n == 0) return;
-  std::vector<Aabb> boxes(n);
-  std::vector<Vec3> centres(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const Occluder& o = set.occluders[i];
-    for (std::uint32_t k = 0; k < o.count; ++k) boxes[i].extend(o.v[k]);
-    centres[i] = boxes[i].centre();
-  }
-  // Occluders grouped by component (stable).
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return component[a] < component[b]; });
-  struct Group {
-    std::uint32_t first, count;
-    Aabb box;
-  };
-  std::vector<Group> groups;
-  for (std::uint32_t i = 0; i < n;) {
-    std::uint32_t j = i;
-    Group g{i, 0, {}};
-    while (j < n && component[order[j]] == component[order[i]]) g.box.extend(boxes[order[j++]]);
-    g.count = j - i;
-    groups.push_back(g);
-    i = j;
-  }
-  const auto longest = [](const Aabb& b) {
-    const Vec3 e = b.hi - b.lo;
-    return e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
-  };
-  struct Task {
-    std::uint32_t node, first, count;
-    bool over_groups;  // [first, first + count) of groups, or of order (inside one component)
-  };
-  set.nodes.reserve(2 * n / kLeafSize + 2 * groups.size() + 2);
-  set.nodes.push_back({});
-  std::vector<Task> stack{{0, 0, std::uint32_t(groups.size()), true}};
-  while (!stack.empty()) {
-    Task task = stack.back();
-    stack.pop_back();
-    // A whole component of up to kComponentLeafSize occluders (a box: four walls and a roof) is one
-    // leaf; larger ones are split into leaves of kLeafSize.
-    std::uint32_t leaf_limit = kLeafSize;
-    if (task.over_groups && task.count == 1) {
-      task = {task.node, groups[task.first].first, groups[task.first].count, false};
-      if (task.count <= kComponentLeafSize) leaf_limit = kComponentLeafSize;
-    }
-    Aabb box, cbox;
-    for (std::uint32_t k = task.first; k < task.first + task.count; ++k) {
-      if (task.over_groups) {
-        box.extend(groups[k].box);
-        cbox.extend(groups[k].box.centre());
-      } else {
-        box.extend(boxes[order[k]]);
-        cbox.extend(centres[order[k]]);
-      }
-    }
-    set.nodes[task.node].box = box;
-    const Vec3 extent = cbox.hi - cbox.lo;
-    if (!task.over_groups && (task.count <= leaf_limit || !(extent.maxCoeff() > 0))) {
-      set.nodes[task.node].first = task.first;
-      set.nodes[task.node].count = task.count;
-      // Lowest first: walls standing on the ground before the roof they carry, which they then
-      // mostly hide.
-      std::stable_sort(order.begin() + task.first, order.begin() + task.first + task.count,
-                       [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo.z() < boxes[b].lo.z(); });
-      continue;
-    }
-    const int axis = longest(cbox);
-    const std::uint32_t half = task.count / 2;
-    if (task.over_groups) {
-      auto begin = groups.begin() + task.first;
-      std::nth_element(begin, begin + half, begin + task.count, [&](const Group& x, const Group& y) {
-        const double cx = x.box.centre()[axis], cy = y.box.centre()[axis];
-        return cx != cy ? cx < cy : x.first < y.first;
+  std::vector<Aabb> boxes(set.occluders.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    for (std::uint32_t k = 0; k < set.occluders[i].count; ++k) boxes[i].extend(set.occluders[i].v[k]);
+  const std::vector<std::uint32_t> order = build_grouped_bvh(
+      boxes, component, kLeafSize, kComponentLeafSize, set.nodes,
+      [&](std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& ord) {
+        std::stable_sort(ord.begin() + first, ord.begin() + first + count,
+                         [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo.z() < boxes[b].lo.z(); });
       });
-    } else {
-      auto begin = order.begin() + task.first;
-      std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t a, std::uint32_t b) {
-        return centres[a][axis] < centres[b][axis] || (centres[a][axis] == centres[b][axis] && a < b);
-      });
-    }
-    const auto left = std::uint32_t(set.nodes.size());
-    set.nodes.push_back({});
-    set.nodes.push_back({});
-    set.nodes[task.node].first = left;
-    set.nodes[task.node].count = 0;
-    stack.push_back({left + 1, task.first + half, task.count - half, task.over_groups});
-    stack.push_back({left, task.first, half, task.over_groups});
-  }
-  std::vector<Occluder> sorted(n);
-  for (std::uint32_t k = 0; k < n; ++k) {
+  std::vector<Occluder> sorted(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
     sorted[k] = set.occluders[order[k]];
     sorted[k].xy_sign = exact_orient2d_sign(sorted[k].v[0], sorted[k].v[1], sorted[k].v[2]);
     if (sorted[k].xy_sign == 0) set_vertical_chains(sorted[k]);
