@@ -315,6 +315,28 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     candidates.push_back(candidate);
     edge_solid.push_back(e.component);
   }
+  // Candidates continued by a collinear one at an end (exact collinearity of the three points).
+  {
+    std::vector<std::pair<std::array<double, 3>, std::uint32_t>> ends;
+    ends.reserve(2 * candidates.size());
+    for (std::uint32_t i = 0; i < candidates.size(); ++i)
+      for (const Vec3& v : {candidates[i].edge.a, candidates[i].edge.b}) ends.push_back({{v.x(), v.y(), v.z()}, i});
+    std::sort(ends.begin(), ends.end());
+    std::vector<char> split(candidates.size(), 0);
+    for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
+      if (ends[i].first != ends[i + 1].first) continue;
+      const SilhouetteEdge &e = candidates[ends[i].second].edge, &f = candidates[ends[i + 1].second].edge;
+      const Vec3 shared(ends[i].first[0], ends[i].first[1], ends[i].first[2]);
+      const Vec3& u = e.a == shared ? e.b : e.a;
+      const Vec3& w = f.a == shared ? f.b : f.a;
+      const auto yz = [](const Vec3& p) { return Vec3(p.y(), p.z(), 0); };
+      const auto zx = [](const Vec3& p) { return Vec3(p.z(), p.x(), 0); };
+      if (exact_orient2d_sign(u, shared, w) == 0 && exact_orient2d_sign(yz(u), yz(shared), yz(w)) == 0 &&
+          exact_orient2d_sign(zx(u), zx(shared), zx(w)) == 0)
+        split[ends[i].second] = split[ends[i + 1].second] = 1;
+    }
+    out.split_edges = std::size_t(std::count(split.begin(), split.end(), 1));
+  }
   build_edge_bvh(out, candidates, edge_solid);
   for (const Candidate& c : candidates) {
     out.edges.push_back(c.edge);

@@ -65,6 +65,9 @@ struct ColumnScene {
   std::vector<SilhouetteEdge> edges;
   std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
   std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
+  // Candidates continued by another collinear candidate at an end (faces split along the edge: a
+  // wall split into a grid of cells has 11 candidates along its top where one would do).
+  std::size_t split_edges = 0;
 
   // The triangles of the other components (open, non-manifold, overhanging, …) and their BVH:
   // the method requires each to be at or below the point's horizontal plane or wholly hidden

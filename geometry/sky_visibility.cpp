@@ -6,7 +6,6 @@
 #include "geometry/column_scene.h"
 #include "geometry/exact_sky.h"
 #include "geometry/horizon_svf.h"
-#include "geometry/occluder_set.h"
 #include "geometry/parallel_chunks.h"
 #include "geometry/point_order.h"
 #include "geometry/sky_integral.h"
@@ -16,14 +15,15 @@ namespace skyband {
 SkyVisibility::SkyVisibility(const Scene& scene, const VisibilityOptions& options, SkyFactorsMethod method)
     : scene_(scene), options_(options), method_(method) {
   // Both exact methods give the same values to rounding; the horizon is the cheaper where it
-  // applies, unless the column solids' faces are finely split (then its silhouette candidates,
-  // cut at every split, outnumber the merged occluders of the union: a wall split 11 × 11 is one
-  // occluder but 11 candidate edges along its top).
-  const ColumnScene& columns = scene.column_scene();
-  if (method == SkyFactorsMethod::automatic && columns.column_solids > 0 &&
-      columns.edges.size() <= 2 * scene.occluders().occluders.size())
-    horizon_ = std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m);
-  if (method != SkyFactorsMethod::bands) exact_ = std::make_unique<ExactSky>(scene, options.surface_offset_m);
+  // applies, unless the column solids' faces are finely split (more than half their silhouette
+  // candidates continued by a collinear one: a wall split 11 × 11 has 11 candidate edges along its
+  // top but is one occluder of the union, whose coplanar regions are merged). The union's
+  // occluders are built only when a point needs them.
+  if (method == SkyFactorsMethod::automatic) {
+    const ColumnScene& columns = scene.column_scene();
+    if (columns.column_solids > 0 && 2 * columns.split_edges <= columns.edges.size())
+      horizon_ = std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m);
+  }
 }
 
 SkyVisibility::~SkyVisibility() = default;
@@ -43,7 +43,8 @@ const VisibleSky& SkyVisibility::compute(const QueryPoint& q, bool region) {
     if (region) sky_.assign(horizon_->envelope());
     return sky_;
   }
-  if (exact_) {
+  if (method_ != SkyFactorsMethod::bands) {
+    if (!exact_) exact_ = std::make_unique<ExactSky>(scene_, options_.surface_offset_m);
     sky_.method = SkyMethod::exact_union;
     exact_->compute(q, sky_.factors);
     if (region) sky_.assign(exact_->occluded());
