@@ -451,6 +451,17 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
       for (std::size_t k = 0; k < n; ++k) v0[k] = value(b[k], w0x, w0y), v1[k] = value(b[k], w1x, w1y);
       v0[n] = value(lo, w0x, w0y), v1[n] = value(lo, w1x, w1y);
       v0[n + 1] = vh0, v1[n + 1] = vh1;
+      // Quick case: [lo, hi] strictly inside one interval [B₂ⱼ, B₂ⱼ₊₁] at both ends (so all over,
+      // as a difference of two arcs changes sign at most once): nothing changes.
+      bool inside = false;
+      for (std::size_t k = 1; k < n && !inside; k += 2)
+        inside = v0[k - 1] < v0[n] && v1[k - 1] < v1[n] && v0[n + 1] < v0[k] && v1[n + 1] < v1[k];
+      if (inside) {
+        if (q.t0 >= u0) copy(u0, w0x, w0y, q);
+        if (u1 < s1) copy(u1, w1x, w1y, q);
+        u0 = u1, w0x = w1x, w0y = w1y;
+        continue;
+      }
       // Cut where lo or hi crosses a boundary (or each other): opposite signs at the two ends.
       cuts_.clear();
       const auto cut = [&](std::uint32_t x, std::size_t ix, std::uint32_t y, std::size_t iy) {
