@@ -21,7 +21,7 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
       ->check(CLI::IsMember({"auto", "exact", "bands"}));
   o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");
   o_tolerance_ = cmd->add_option("--tolerance", tolerance_,
-                                 "Adaptive refinement to this estimated absolute SVF error (default 5e-4)");
+                                 "Band method: adaptive refinement to this absolute error of svf and sky_exposure (default 5e-4)");
   o_bands_->excludes(o_tolerance_);
   cmd->add_option("--threads", threads, "Worker threads (0 = all cores; results do not depend on it)");
   cmd->add_flag("--quiet", quiet, "No progress or summary on stderr");
