@@ -24,7 +24,7 @@ double node_distance2(const Aabb& box, const Vec3& p) {
 }  // namespace
 
 ExactSky::ExactSky(const Scene& scene, double surface_offset_m)
-    : scene_(scene), set_(scene.occluders()), offset_m_(surface_offset_m) {}
+    : set_(scene.occluders()), offset_m_(surface_offset_m) {}
 
 void ExactSky::insert_back_of_face() {
   const Vec3& n = n_;
@@ -267,8 +267,9 @@ void ExactSky::walk() {
     buckets_[b].push_back(c);
     filled[b >> 6] |= std::uint64_t(1) << (b & 63);
   };
-  // Nodes hidden only if the lowest gaps close are deferred; when the queue runs dry, each is
-  // tested against the union as it is then, and those still not hidden go back, to be opened.
+  // Nodes hidden only if the gaps below the highest interval closed are deferred; when the queue
+  // runs dry, each is tested against the union as it is then, and those still not hidden go back,
+  // to be opened.
   // So a node is skipped only when the exact test hides it: the result does not depend on the
   // deferral, which only changes the order (a terrain's far triangles wait until the near ones
   // have closed the gaps under it).

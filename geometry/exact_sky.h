@@ -76,13 +76,12 @@ class ExactSky {
   void project(const Occluder& o);
   void walk();
 
-  const Scene& scene_;
   const OccluderSet& set_;
   double offset_m_;
   Vec3 p_{0, 0, 0}, n_{0, 0, 1};
   OccludedSky sky_;
   std::array<std::vector<std::uint32_t>, 128> buckets_;
-  std::vector<std::uint32_t> deferred_;       // nodes hidden only if the lowest gaps close
+  std::vector<std::uint32_t> deferred_;       // nodes hidden only if the gaps closed
   std::vector<std::uint32_t> opened_;         // per node: == generation_ once it must be opened
   std::uint32_t generation_ = 0;
   std::size_t projected_ = 0, nodes_visited_ = 0, changing_ = 0;

@@ -87,11 +87,11 @@ class OccludedSky {
   // (0 ≤ lo ≤ hi, hi may exceed 4: wraps) already occluded — below the grounded interval's top or
   // above the lowest ceiling's bottom in every bin? bottom ≤ 0 means "from below the horizon".
   bool hidden(double lo, double hi, double top, double bottom) const;
-  // Not conservative: would everything with tan e ≤ top over [lo, hi] be occluded if the lowest
-  // gap (between the grounded interval and the first floating one, not a ceiling) closed? A gap
-  // under a terrain triangle or a wall standing on a terrain above the point's height usually
-  // closes once the nearer surface is in; the walk defers what this hides and checks it against
-  // the final union (exact_sky.cpp).
+  // Not conservative: would everything with tan e ≤ top over [lo, hi] be occluded if every gap
+  // below the highest interval (under a ceiling, below the one beneath it) closed? A gap under a
+  // terrain triangle or a wall standing on a terrain above the point's height usually closes once
+  // the nearer surface is in; the walk defers what this hides and checks it against the union as it
+  // is when the queue runs dry (exact_sky.cpp).
   bool hidden_if_gaps_close(double lo, double hi, double top) const;
 
   // Calls f(t0, w0x, w0y, t1, w1x, w1y, boundaries) for every piece in order of t (boundaries: the
