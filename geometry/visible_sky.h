@@ -101,9 +101,8 @@ struct VisibleSky {
 // face), so the signed cosine integral is the SVF's.
 template <class ForEachPiece, class Value>
 SkyFactors integrate_occluded_sky(const Vec3& n, ForEachPiece&& for_each_piece, Value&& value) {
-  constexpr std::uint32_t kGround = 0, kZenith = 1;
+  constexpr std::uint32_t kZenith = 1;  // (id 0, the nadir, bounds no gap)
   constexpr double kHalfPi = 1.57079632679489661923;
-  (void)kGround;
   const Vec3 Z(0, 0, 1);
   const bool meridians = n.x() != 0 || n.y() != 0;
   double phi = 0, omega = 0, mer = 0;
