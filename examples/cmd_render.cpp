@@ -49,6 +49,7 @@ void run_render(const RenderOptions& o) {
   const PinholeCamera camera(desc.camera);
   RenderSettings settings;
   settings.samples_per_pixel = desc.samples;
+  settings.method = desc.visibility;
   settings.visibility.bands = desc.bands;
   settings.visibility.tolerance = desc.tolerance;
   settings.specular.epsilon = desc.epsilon;

@@ -18,7 +18,10 @@ std::map<std::string, std::string> render_attributes(const SkyModel& sky, const 
                 sky.sun_direct_normal().integral_nm());
   char quality[300];
   std::snprintf(quality, sizeof quality,
-                "bands %d, tolerance %g, specular epsilon %g, specular reuse block %d tolerance %g, samples per pixel %d, %s",
+                "visibility %s, bands %d, tolerance %g, specular epsilon %g, specular reuse block %d tolerance %g, samples per pixel %d, %s",
+                settings.method == SkyFactorsMethod::bands   ? "band method"
+                : settings.method == SkyFactorsMethod::exact ? "exact union"
+                                                             : "exact (horizon or union)",
                 settings.visibility.bands, settings.visibility.tolerance, settings.specular.epsilon,
                 settings.specular_reuse_block, settings.specular_reuse_tolerance, settings.samples_per_pixel,
                 settings.paper_scale ? "Cook-Torrance 1982 scale" : "microfacet f_s");

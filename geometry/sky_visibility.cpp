@@ -8,6 +8,7 @@
 #include "geometry/horizon_svf.h"
 #include "geometry/parallel_chunks.h"
 #include "geometry/point_order.h"
+#include "geometry/sample_lines.h"
 #include "geometry/sky_integral.h"
 
 namespace skyband {
@@ -87,6 +88,35 @@ SkyMethodCounts for_each_visible_sky(const Scene& scene, std::span<const QueryPo
       });
   if (progress) progress(points.size(), points.size());
   return {counts[0].load(), counts[1].load(), counts[2].load()};
+}
+
+VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const QueryPoint> points,
+                                         const VisibilityOptions& options, SkyFactorsMethod method, int threads,
+                                         const std::function<void(std::size_t, std::size_t)>& progress,
+                                         SkyMethodCounts* counts) {
+  if (method == SkyFactorsMethod::bands) {
+    if (counts) *counts = {0, 0, points.size()};
+    return compute_visibility(scene, points, options, threads, progress);
+  }
+  SampleLineOptions lines;
+  lines.bands = options.bands;
+  lines.tolerance = options.tolerance;
+  std::vector<VisibilityCache::PointResult> results(points.size());
+  const SkyMethodCounts c = for_each_visible_sky(scene, points, options, method, threads, progress, true,
+                                                 [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) {
+                                                   sample_lines_of(sky, lines, results[i]);
+                                                 });
+  if (counts) *counts = c;
+  VisibilityCache cache;
+  std::size_t bands = 0;
+  for (const auto& r : results) bands += r.bands.size();
+  cache.reserve(points.size(), points.empty() ? 0 : bands / points.size() + 1);
+  for (auto& r : results) {
+    cache.append(r);
+    std::vector<BandRecord>().swap(r.bands);
+    std::vector<VisibleInterval>().swap(r.intervals);
+  }
+  return cache;
 }
 
 }  // namespace skyband

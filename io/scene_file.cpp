@@ -21,7 +21,7 @@ const std::set<std::string>& known_keys() {
       "meshes",          "materials.default", "camera.position",  "camera.look_at",     "camera.up",
       "camera.fov_deg",  "sun.altitude_deg",  "sun.azimuth_deg",  "sun.latitude_deg",   "sun.longitude_deg",
       "sun.elevation_m", "sun.time",          "sun.utc_offset_hours", "sky.model",      "sky.aod550",
-      "sky.angstrom_alpha", "sky.ozone_du",   "sky.zenith_luminance_cd_m2", "quality.bands", "quality.tolerance",
+      "sky.angstrom_alpha", "sky.ozone_du",   "sky.zenith_luminance_cd_m2", "quality.bands", "quality.tolerance", "quality.visibility",
       "quality.epsilon", "quality.samples",   "quality.paper_scale", "quality.reuse_block", "quality.reuse_tolerance", "image.width",     "image.height",
       "image.exposure"};
   return k;
@@ -300,6 +300,12 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
     throw InputError(file + ": [sky]: " + e.what());
   }
   // quality
+  if (auto v = r.string("quality.visibility")) {
+    if (*v == "auto") s.visibility = SkyFactorsMethod::automatic;
+    else if (*v == "exact") s.visibility = SkyFactorsMethod::exact;
+    else if (*v == "bands") s.visibility = SkyFactorsMethod::bands;
+    else r.fail("quality.visibility", r.get("quality.visibility"), "must be \"auto\", \"exact\" or \"bands\"");
+  }
   if (auto v = r.integer("quality.bands", 1, 4096)) s.bands = *v;
   if (auto v = r.number("quality.tolerance", 0, 1, "in [0, 1] (0 = fixed number of bands)")) s.tolerance = *v;
   if (auto v = r.number("quality.epsilon", 1e-12, 0.999, "in (0, 1)")) s.epsilon = *v;

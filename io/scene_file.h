@@ -31,10 +31,17 @@
 //   zenith_luminance_cd_m2   # CIE skies only (default: gensky-style formula)
 //
 //   [quality]
-//   bands = 64               # N equal-weight bands, [1, 4096]
-//   tolerance = 0            # adaptive band refinement target (SVF units); 0 = fixed N. With
-//                            # refinement every point has its own band layout and therefore its
-//                            # own sky table: much slower shading (see renderer.h).
+//   visibility = "auto"      # how each surface sample's visible sky is found: "auto" (exact:
+//                            # the exact horizon where it applies, else the exact union of the
+//                            # occluders; geometry/sky_visibility.h), "exact" (the exact union
+//                            # everywhere) or "bands" (the band method's own geometry pass)
+//   bands = 64               # N equal-weight bands (sample lines), [1, 4096]
+//   tolerance = 0            # 0 = fixed N. Else, exact visibility: N is doubled per sample
+//                            # until the lines' SVF and exposure are within tolerance/2 of the
+//                            # exact values (geometry/sample_lines.h); bands: the band method's
+//                            # adaptive refinement target. Either way every point then has its
+//                            # own band layout and therefore its own sky table: much slower
+//                            # shading (see renderer.h).
 //   epsilon = 1e-3           # truncation threshold of the specular sky march (seed §3), (0, 1)
 //   samples = 1              # samples per pixel, [1, 256]
 //   paper_scale = false      # Cook–Torrance 1982 ×4 scale instead of the microfacet form
@@ -59,6 +66,7 @@
 #include <vector>
 
 #include "geometry/camera.h"
+#include "geometry/sky_factors.h"
 #include "geometry/triangle_soup.h"
 #include "lighting/atmosphere.h"
 #include "lighting/sky_model.h"
@@ -76,6 +84,7 @@ struct SceneDescription {
   AtmosphereParams atmosphere;
   std::string sky_model = "multiple";
   SkyModelSpec sky_spec;
+  SkyFactorsMethod visibility = SkyFactorsMethod::automatic;
   int bands = 64;
   double tolerance = 0;
   double epsilon = 1e-3;

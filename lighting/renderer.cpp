@@ -11,6 +11,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/sky_visibility.h"
 #include "lighting/colour.h"
 #include "lighting/sky_lut.h"
 #include "lighting/sky_radiance_grid.h"
@@ -102,7 +103,7 @@ GeometryPass trace_geometry(const Scene& scene, const PinholeCamera& camera, con
   hits.clear();
   hits.shrink_to_fit();
   const auto t1 = Clock::now();
-  pass.visibility = compute_visibility(scene, points, settings.visibility, settings.threads, progress);
+  pass.visibility = compute_visibility_cache(scene, points, settings.visibility, settings.method, settings.threads, progress);
   pass.visibility_seconds = seconds_since(t1);
   return pass;
 }

@@ -5,8 +5,9 @@
 // Phase 1, geometry (trace_geometry): for every pixel sample the primary ray's closest hit
 // (Scene::intersect, watertight) gives the hit point (re-evaluated on the triangle from its
 // barycentrics), the geometric normal flipped to face the camera (meshes have inconsistent
-// orientation), the unit view direction and the triangle's material slot; then the exact band
-// visibility of every hit point (compute_visibility → one VisibilityCache entry per surface
+// orientation), the unit view direction and the triangle's material slot; then the visible sky of
+// every hit point on band sample lines (compute_visibility_cache, geometry/sky_visibility.h: by
+// default the exact visible sky cut along the lines; one VisibilityCache entry per surface
 // sample). None of this depends on the sky, the sun or the materials.
 // Phase 1b, sun (update_sun): the exact shadow bit of every surface sample for one sun direction
 // (BandVisibility::direction_visible: one sample plane per point); redo it when the sun moves.
@@ -36,6 +37,7 @@
 #include "geometry/band_visibility.h"
 #include "geometry/camera.h"
 #include "geometry/scene.h"
+#include "geometry/sky_factors.h"
 #include "geometry/visibility_cache.h"
 #include "lighting/material.h"
 #include "lighting/sky_model.h"
@@ -45,7 +47,11 @@ namespace skyband {
 
 struct RenderSettings {
   int samples_per_pixel = 1;       // anti-aliasing pattern of camera.h
-  VisibilityOptions visibility;    // bands (N), adaptive tolerance (0 = fixed N), offsets
+  // How the visible sky of each surface sample is found (geometry/sky_visibility.h): exact by
+  // default, cut along `visibility.bands` sample lines (geometry/sample_lines.h); or the band
+  // method's own geometry pass.
+  SkyFactorsMethod method = SkyFactorsMethod::automatic;
+  VisibilityOptions visibility;    // bands (N), tolerance (0 = fixed N), offsets
   SpecularSkyOptions specular;    // ε and steps of the partial-sky march (specular_sky.h)
   // Image-space reuse of the specular sky term (specular_reuse.h): quadtree blocks of up to this
   // many pixels, interpolated where the corners' bilinear interpolation predicts the marched

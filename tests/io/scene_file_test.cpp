@@ -71,6 +71,7 @@ BOOST_AUTO_TEST_CASE(parses_keys_and_defaults) {
   BOOST_TEST(s.reuse_tolerance == 0.01);
   BOOST_TEST(s.samples == 1);
   BOOST_TEST(s.tolerance == 0.0);
+  BOOST_TEST((s.visibility == SkyFactorsMethod::automatic));
   BOOST_TEST(s.sky_model == "multiple");
   BOOST_TEST(!s.exposure.has_value());
   BOOST_TEST(s.material_assignment.at("facade") == "aluminium-panel");
@@ -88,7 +89,9 @@ BOOST_AUTO_TEST_CASE(geometry_maps_usemtl_names) {
 BOOST_AUTO_TEST_CASE(overrides_with_dotted_keys) {
   const SceneDescription s = parse(kBase, {"sun.altitude_deg=17", "image.width=320", "sky.model=cie-12",
                                            "materials.assign.facade=painted-wall", "quality.samples=4",
-                                           "camera.position=[1, -20, 3]", "image.exposure=0.5"});
+                                           "camera.position=[1, -20, 3]", "image.exposure=0.5", "quality.visibility=bands"});
+  BOOST_TEST((s.visibility == SkyFactorsMethod::bands));
+  BOOST_TEST((parse(kBase, {"quality.visibility=exact"}).visibility == SkyFactorsMethod::exact));
   BOOST_TEST(s.sun_altitude_deg == 17.0);
   BOOST_TEST(s.camera.width == 320);
   BOOST_TEST(s.sky_model == "cie-12");
@@ -126,6 +129,7 @@ BOOST_AUTO_TEST_CASE(every_error_names_where_the_key_and_the_value) {
       {kBase, {"image.width=0"}, {"--set image.width=0", "[1, 16384]"}},
       {kBase, {"image.width=abc"}, {"image.width", "expected an integer"}},
       {kBase, {"quality.bands=0"}, {"quality.bands", "[1, 4096]"}},
+      {kBase, {"quality.visibility=fast"}, {"quality.visibility", "fast", "\"auto\", \"exact\" or \"bands\""}},
       {kBase, {"quality.epsilon=0"}, {"quality.epsilon", "(0, 1)"}},
       {kBase, {"quality.paper_scale=3"}, {"quality.paper_scale", "true or false"}},
       {kBase, {"quality.reuse_tolerance=0.9"}, {"quality.reuse_tolerance", "[0, 0.5]"}},

@@ -218,6 +218,36 @@ BOOST_AUTO_TEST_CASE(box_shadow_edge_is_where_geometry_puts_it) {
   BOOST_TEST(first_out - last_in <= footprint * 1.01);
 }
 
+BOOST_AUTO_TEST_CASE(exact_and_band_visibility_give_the_same_sky_light) {
+  // The default geometry pass cuts the exact visible sky along the sample lines; the band method
+  // intersects the same lines (fixed N: the same weight medians) with every triangle itself. Both
+  // are exact on each line, so the sky layers agree to float storage. The sky is a CIE clear sky
+  // (not uniform), lighting the box's walls and its shadowed ground.
+  const Scene scene(ground_scene(1e4, true));
+  const PinholeCamera cam(camera_spec(Vec3(7, -9, 5), Vec3(0, 0, 1), 40, 30));
+  RenderSettings exact;
+  exact.visibility.bands = 16;
+  exact.visibility.tolerance = 0;
+  exact.visibility.axis_tail_rad = 0;  // the band method culls nothing either
+  RenderSettings bands = exact;
+  bands.method = SkyFactorsMethod::bands;
+  GeometryPass a = trace_geometry(scene, cam, exact), b = trace_geometry(scene, cam, bands);
+  const SkyModel sky(AtmosphereParams{}, direction_from_altitude_azimuth(0.5, 2.0), parse_sky_model("cie-12", "test"));
+  update_sun(a, scene, sky.sun_direction(), exact);
+  update_sun(b, scene, sky.sun_direction(), bands);
+  const Material white = white_diffuse(0.6);
+  const Material* mats[] = {&white, &white};
+  const RenderLayers la = shade(a, sky, mats, exact), lb = shade(b, sky, mats, bands);
+  BOOST_TEST_REQUIRE(la.sky_diffuse.size() == lb.sky_diffuse.size());
+  float peak = 0;
+  for (const float v : lb.sky_diffuse) peak = std::max(peak, v);
+  BOOST_TEST(peak > 0.0f);
+  for (std::size_t i = 0; i < la.sky_diffuse.size(); ++i) {
+    BOOST_TEST(la.sky_diffuse[i] == lb.sky_diffuse[i], tt::tolerance(1e-5f));
+    BOOST_TEST(la.sun_diffuse[i] == lb.sun_diffuse[i]);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(physical_sky_images_are_finite_and_relighting_is_bit_identical) {
   const Scene scene(ground_scene(5000, true));
   const PinholeCamera cam(camera_spec(Vec3(-6, -8, 1.6), Vec3(0, 0, 1), 40, 30));
