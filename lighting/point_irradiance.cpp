@@ -14,6 +14,7 @@
 #include "lighting/colour.h"
 #include "lighting/sky_column_table.h"
 #include "lighting/sky_radiance_grid.h"
+#include "lighting/visible_sky_integral.h"
 
 namespace skyband {
 
@@ -38,29 +39,6 @@ void check_step(double max_step_rad) {
     throw InputError("irradiance: quadrature step " + std::to_string(max_step_rad) + " rad must be finite and > 0");
 }
 
-// A sky ready for every method: the projected grid (for the band method's lines) and its column
-// tables (for the exact methods' regions: sky_column_table.h).
-struct SkyTables {
-  const ProjectedSkyGrid& grid;
-  SkyColumnTable columns;
-  SkyTables(const ProjectedSkyGrid& g, int threads) : grid(g), columns(g, threads) {}
-};
-
-// Both channels of the sky integrated over a point's visible sky: along the band lines
-// (Gauss–Legendre pieces ≤ max_step_rad), or in azimuth over the exact region's signed fan with the
-// column tables (pieces ≤ a quarter of it: the one-dimensional quadrature is cheap, and the arcs'
-// elevation e₀(φ) can be steep). `fan` is scratch.
-void sky_channels(const VisibleSky& sky, const SkyTables& tables, double max_step_rad, std::vector<SkyFanTriangle>& fan,
-                  double out[2]) {
-  if (!sky.exact()) {
-    integrate_irradiance_channels<2>(*sky.bands, [&](const Vec3& d, double* c) { tables.grid.lookup_unit_n<2>(d, c); }, out,
-                                     max_step_rad);
-    return;
-  }
-  sky.fan(fan);
-  tables.columns.integrate_fan(fan, sky.normal, out, 0.25 * max_step_rad);
-}
-
 // Every point's visible sky (geometry/sky_visibility.h): fills svf, sky_exposure and method of
 // out[i] and hands (the sky, the point, its worker — for the sun's look-ups —, out[i]) to `fill`.
 template <class Result, class Fill>
@@ -78,22 +56,6 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
   return out;
 }
 
-// The sky of an unobstructed horizontal point by each kind of method (the denominator of
-// sky_ratio: the same method and quadrature, so an open horizontal point gives exactly 1).
-struct OpenSky {
-  double exact[2], bands[2];
-  OpenSky(const SkyTables& tables, const PointIrradianceOptions& options) {
-    const Scene empty{TriangleSoup{}};
-    const QueryPoint up{Vec3(0, 0, 0), Vec3(0, 0, 1)};
-    std::vector<SkyFanTriangle> fan;
-    SkyVisibility exact_sky(empty, options.visibility, SkyFactorsMethod::exact);
-    sky_channels(exact_sky.compute(up), tables, options.max_step_rad, fan, exact);
-    SkyVisibility band_sky(empty, options.visibility, SkyFactorsMethod::bands);
-    sky_channels(band_sky.compute(up), tables, options.max_step_rad, fan, bands);
-  }
-  double lx(const VisibleSky& sky) const { return sky.exact() ? exact[1] : bands[1]; }
-};
-
 }  // namespace
 
 std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points,
@@ -106,7 +68,7 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
   const double sun_W_m2 = dn.integral_nm(), sun_lx = luminous(dn);
   const Vec3 s = sky.sun_direction();
 
-  const OpenSky open(grid, options);
+  const OpenSky open(grid, options.visibility, options.max_step_rad);
   return for_each_point<PointIrradiance>(
       scene, points, options, progress, [&](const VisibleSky& sky_seen, const QueryPoint& q, SkyVisibility& worker, PointIrradiance& r) {
         thread_local std::vector<SkyFanTriangle> fan;
@@ -114,7 +76,7 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
         sky_channels(sky_seen, grid, options.max_step_rad, fan, e);
         r.sky_W_m2 = e[0];
         r.sky_lx = e[1];
-        const double open_lx = open.lx(sky_seen);
+        const double open_lx = open.of(sky_seen)[1];
         r.sky_ratio = open_lx > 0 ? e[1] / open_lx : 0.0;
         r.cos_incidence = q.normal.dot(s);
         // direction_visible is false for a sun below the horizon or behind the face.
