@@ -6,6 +6,8 @@
 //                      [--threads K] [--quiet]
 //   skyband irradiance --demo --sun-altitude DEG [--sun-azimuth DEG]
 //   skyband irradiance --mesh ... --points ... --out ... --times TIMES.csv [--lat DEG --lon DEG] [sky options]
+//   skyband irradiance --mesh ... --points ... --out ... --weather FILE.epw [--from MM-DD --to MM-DD]
+//                      [--albedo R] [--ground-materials NAME,...]
 //
 // Points as for `skyband svf` (metres, z up; normals default to +z). Per point, on the plane of
 // its normal (lighting/point_irradiance.h): the sky through the exact visible α-intervals of the
@@ -22,11 +24,18 @@
 //   svf, sky_exposure, sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2 (W·h·m⁻², 380–780 nm),
 //   sky_lxh, sun_lxh, global_lxh (lx·h): one geometry pass, one quadrature of the time-summed sky
 //   per point, one exact shadow test per moment and point.
-// Not included: light reflected by the ground and the buildings.
+// Not included in these: light reflected by the ground and the buildings.
+// With --weather, sums over the weather file's period (lighting/climate_irradiation.h: the Perez
+// all-weather sky of each hour, the sun from its DNI, the ground seen below the horizon), in
+// broadband shortwave kWh·m⁻² as the file measures: svf, sky_exposure, ground_view,
+// global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2, global_klxh (kilolux-hours), sun_hours.
+// The file's warnings and its timing check (radiation against the sun, weather_timing.h) go to
+// stderr.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 
 #include "examples/command_registry.h"
 #include "examples/demo_scene.h"
@@ -35,8 +44,12 @@
 #include "geometry/input_error.h"
 #include "io/csv_table.h"
 #include "io/points_csv.h"
+#include "io/epw_reader.h"
+#include "lighting/climate_irradiation.h"
 #include "lighting/colour.h"
 #include "lighting/point_irradiance.h"
+#include "lighting/weather_hours.h"
+#include "lighting/weather_timing.h"
 
 namespace skyband::cli {
 
@@ -55,6 +68,10 @@ struct IrradianceArgs {
   SunSkyOptions sun_sky;
   std::string times;
   bool demo = false;
+  std::string weather, from, to;
+  std::optional<double> albedo;
+  std::vector<std::string> ground_materials;
+  CLI::Option* o_ground = nullptr;
 };
 
 // Accuracy and threads from the shared per-point options (validated there).
@@ -135,6 +152,98 @@ void run_times(const IrradianceArgs& a) {
   }
 }
 
+// --weather: irradiation over a weather file's period (lighting/climate_irradiation.h).
+void run_weather(const IrradianceArgs& a) {
+  // Everything the user typed is checked before the work starts.
+  if (const std::string f = a.sun_sky.first_given(); !f.empty())
+    throw InputError("--weather: the site, the sun and the sky come from the weather file; " + f + " does not apply");
+  if (a.albedo && !(*a.albedo >= 0 && *a.albedo <= 1)) throw InputError("--albedo " + fmt(*a.albedo) + ": must be in [0, 1]");
+  if (a.from.empty() != a.to.empty()) throw InputError(a.from.empty() ? "--to needs --from" : "--from needs --to");
+  std::optional<MonthDay> from, to;
+  if (!a.from.empty()) from = parse_month_day(a.from, "--from"), to = parse_month_day(a.to, "--to");
+  ClimateIrradiationOptions opt;
+  opt.visibility = a.job.visibility_options();
+  opt.method = a.job.method();
+  opt.threads = a.job.threads;
+  if (a.o_ground->count()) opt.ground_materials = a.ground_materials;
+
+  WeatherSeries series = read_epw(a.weather);
+  if (from) {
+    series = select_period(series, *from, *to);
+    if (series.records.empty())
+      throw InputError(a.weather + ": no records from " + a.from + " to " + a.to);
+  }
+  for (const std::string& w : series.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
+  if (const auto w = weather_timing_warning(series, weather_timing(series))) std::fprintf(stderr, "skyband: warning: %s\n", w->c_str());
+  WeatherHoursOptions hopt;
+  hopt.albedo = a.albedo;
+  WeatherHoursReport hrep;
+  const std::vector<WeatherHour> hours = weather_hours(series, hopt, &hrep);
+
+  TriangleSoup soup = a.job.load_meshes();
+  const PointsTable table = read_points_csv(a.job.points);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene scene(std::move(soup));
+  Progress progress("irradiance", !a.job.quiet);
+  const ClimateRun run = compute_point_climate(scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  const std::vector<std::string> columns = {"svf",          "sky_exposure",  "ground_view",  "global_kWh_m2", "sky_kWh_m2",
+                                            "sun_kWh_m2",   "ground_kWh_m2", "global_klxh",  "sun_hours"};
+  std::vector<std::vector<double>> values(columns.size(), std::vector<double>(run.points.size()));
+  for (std::size_t i = 0; i < run.points.size(); ++i) {
+    const PointClimate& r = run.points[i];
+    const double v[] = {r.svf,
+                        r.sky_exposure,
+                        r.ground_view,
+                        1e-3 * (r.sky_Wh_m2 + r.sun_Wh_m2 + r.ground_Wh_m2),
+                        1e-3 * r.sky_Wh_m2,
+                        1e-3 * r.sun_Wh_m2,
+                        1e-3 * r.ground_Wh_m2,
+                        1e-3 * (r.sky_lxh + r.sun_lxh + r.ground_lxh),
+                        r.sun_hours};
+    for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
+  }
+  write_points_csv(a.job.out, table, columns, values);
+  // A terrain sheet without a ground material hides the ground from every point: say so when most
+  // points that face the ground see none of it.
+  if (run.ground_triangles == 0) {
+    std::size_t facing = 0, blind = 0;
+    for (std::size_t i = 0; i < run.points.size(); ++i) {
+      const double open = 0.5 * (1 - table.points[i].normal.normalized().z());
+      if (open < 0.05) continue;
+      ++facing;
+      blind += run.points[i].ground_view < 0.05 * open;
+    }
+    if (facing > 0 && 4 * blind > facing) {
+      std::string names;
+      for (const std::string& g : opt.ground_materials) names += (names.empty() ? "" : ",") + g;
+      std::fprintf(stderr,
+                   "skyband: warning: %zu of the %zu points that face the ground see less than 5 %% of it, and no triangle "
+                   "has a ground material (%s): if the model holds its terrain, name its material with --ground-materials\n",
+                   blind, facing, names.c_str());
+    }
+  }
+  if (!a.job.quiet) {
+    const WeatherRecord& first = series.records.front();
+    const WeatherRecord& last = series.records.back();
+    std::fprintf(stderr,
+                 "irradiance: %s (%.2f N, %.2f E, UTC%+g), %zu intervals %02d-%02d to %02d-%02d: %zu with diffuse light, "
+                 "%zu with the sun up; illuminance %s; albedo %s\n",
+                 series.location.name.c_str(), series.location.latitude_deg, series.location.longitude_deg,
+                 series.location.time_zone_hours, hours.size(), first.month, first.day, last.month, last.day,
+                 run.sky_intervals, run.sun_intervals,
+                 hrep.illuminance_modelled == 0 ? "from the file" : hrep.illuminance_from_file == 0 ? "by the Perez 1990 efficacy model" : "from the file where given, else Perez 1990",
+                 a.albedo ? fmt(*a.albedo).c_str() : hrep.albedo_from_file > 0 ? "from the file (0.2 where missing)" : "0.2");
+    std::fprintf(stderr,
+                 "irradiance: %zu points in %.2f s; %s; sky quadrature calibrated by %.6f (W) and %.6f (lx); %zu ground "
+                 "triangles; wrote %s\n",
+                 run.points.size(), seconds,
+                 method_summary(run.counts.by_horizon, run.counts.by_exact, run.counts.by_bands).c_str(),
+                 run.sky_calibration[0], run.sky_calibration[1], run.ground_triangles, a.job.out.c_str());
+  }
+}
+
 // The built-in street block of `svf --demo` under the given sun and sky: a table on stdout.
 void run_demo(const IrradianceArgs& a) {
   const PointIrradianceOptions opt = irradiance_options(a.job);
@@ -159,6 +268,13 @@ void run(const IrradianceArgs& a) {
     if (!a.times.empty()) throw InputError("--demo takes one sun (--sun-altitude or --lat/--lon/--time), not --times");
     return run_demo(a);
   }
+  if (!a.weather.empty()) {
+    if (!a.times.empty()) throw InputError("--weather and --times: give one of them");
+    a.job.require_files("irradiance");
+    return run_weather(a);
+  }
+  if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count())
+    throw InputError("--from, --to, --albedo and --ground-materials need --weather");
   if (!a.times.empty()) {
     a.job.require_files("irradiance");
     return run_times(a);
@@ -215,12 +331,25 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
       "that of an open horizontal face; with --model cie-overcast the vertical sky component of a window).\n"
       "With --times FILE: sums over the file's moments instead: sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2, sky_lxh,\n"
       "sun_lxh, global_lxh (each moment weighted by its 'hours').\n"
-      "Not included: light reflected by the ground and the buildings.");
+      "With --weather FILE.epw: sums over the file's period under the Perez all-weather sky, with the ground\n"
+      "reflecting albedo x GHI where the point sees it: broadband kWh/m2 (see --weather).\n"
+      "Not included: light reflected by the buildings (and, without --weather, by the ground).");
   args->job.add_to(cmd, "Output CSV (input rows + the columns above), written atomically");
   args->sun_sky.add_to(cmd);
   cmd->add_option("--times", args->times,
                   "CSV of moments: 'time' (ISO 8601, with --lat --lon) or 'sun_altitude','sun_azimuth' (degrees), "
                   "optional 'hours' (default 1); outputs sums over them instead of one moment (see --help above)");
+  cmd->add_option("--weather", args->weather,
+                  "EnergyPlus weather file (EPW): sums over its period under the Perez all-weather sky, the sun and the "
+                  "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
+                  "(broadband shortwave), global_klxh, sun_hours");
+  cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
+  cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
+  cmd->add_option("--albedo", args->albedo, "With --weather: ground reflectance [0, 1] (default: the file's, else 0.2)");
+  args->o_ground = cmd->add_option("--ground-materials", args->ground_materials,
+                                   "With --weather: material names (any case) of the triangles that are ground and hide no "
+                                   "ground (default: ground, terrain, road, water, forest, grass, landuse, ...)")
+                       ->delimiter(',');
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table (needs a sun)");
   cmd->callback([args] { run(*args); });
   return cmd;

@@ -33,21 +33,25 @@ void require_range(const char* flag, double v, double lo, double hi, const char*
 Vec3 SunPlacement::direction() const { return direction_from_altitude_azimuth(altitude_deg * kDeg, azimuth_deg * kDeg); }
 
 void SunSkyOptions::add_to(CLI::App* sub) {
-  o_alt_ = sub->add_option("--sun-altitude", sun_altitude_deg_, "Apparent sun altitude, degrees [-90, 90]");
-  o_az_ = sub->add_option("--sun-azimuth", sun_azimuth_deg_, "Sun azimuth, degrees clockwise from north (default 180 = south)");
-  o_lat_ = sub->add_option("--lat", lat_deg_, "Latitude, degrees north (with --lon, --time: NREL SPA)");
-  o_lon_ = sub->add_option("--lon", lon_deg_, "Longitude, degrees east");
-  o_time_ = sub->add_option("--time", time_, "Local time, ISO 8601: 2026-06-21T12:00:00+02:00, ...Z, or without offset plus --tz");
-  o_tz_ = sub->add_option("--tz", tz_hours_, "UTC offset of --time in hours (east positive), when --time has none");
-  sub->add_option("--elevation", elevation_m_, "Site elevation above sea level, metres (SPA parallax and atmosphere ground)");
-  sub->add_option("--delta-t", delta_t_s_, "Delta T = TT - UT1, seconds (default 69)");
-  sub->add_option("--pressure-mbar", pressure_mbar_, "Mean local pressure for SPA refraction, mbar (default 1013.25)");
-  sub->add_option("--temperature-c", temperature_C_, "Mean local temperature for SPA refraction, deg C (default 15)");
-  sub->add_option("--aod550", aod550_, "Aerosol optical depth at 550 nm (default 0.1)");
-  sub->add_option("--angstrom-alpha", angstrom_alpha_, "Angstrom exponent (default 1.3)");
-  sub->add_option("--ozone-du", ozone_du_, "Ozone column, Dobson units (default 300)");
-  sub->add_option("--model", model_, "Sky model: single | multiple | cie-1 ... cie-15 | cie-overcast (default multiple)");
-  o_zl_ = sub->add_option("--zenith-luminance", zenith_luminance_, "CIE skies: zenith luminance cd/m2 (default gensky-style formula)");
+  const auto add = [&](CLI::Option* o) {
+    all_.push_back(o);
+    return o;
+  };
+  o_alt_ = add(sub->add_option("--sun-altitude", sun_altitude_deg_, "Apparent sun altitude, degrees [-90, 90]"));
+  o_az_ = add(sub->add_option("--sun-azimuth", sun_azimuth_deg_, "Sun azimuth, degrees clockwise from north (default 180 = south)"));
+  o_lat_ = add(sub->add_option("--lat", lat_deg_, "Latitude, degrees north (with --lon, --time: NREL SPA)"));
+  o_lon_ = add(sub->add_option("--lon", lon_deg_, "Longitude, degrees east"));
+  o_time_ = add(sub->add_option("--time", time_, "Local time, ISO 8601: 2026-06-21T12:00:00+02:00, ...Z, or without offset plus --tz"));
+  o_tz_ = add(sub->add_option("--tz", tz_hours_, "UTC offset of --time in hours (east positive), when --time has none"));
+  add(sub->add_option("--elevation", elevation_m_, "Site elevation above sea level, metres (SPA parallax and atmosphere ground)"));
+  add(sub->add_option("--delta-t", delta_t_s_, "Delta T = TT - UT1, seconds (default 69)"));
+  add(sub->add_option("--pressure-mbar", pressure_mbar_, "Mean local pressure for SPA refraction, mbar (default 1013.25)"));
+  add(sub->add_option("--temperature-c", temperature_C_, "Mean local temperature for SPA refraction, deg C (default 15)"));
+  add(sub->add_option("--aod550", aod550_, "Aerosol optical depth at 550 nm (default 0.1)"));
+  add(sub->add_option("--angstrom-alpha", angstrom_alpha_, "Angstrom exponent (default 1.3)"));
+  add(sub->add_option("--ozone-du", ozone_du_, "Ozone column, Dobson units (default 300)"));
+  add(sub->add_option("--model", model_, "Sky model: single | multiple | cie-1 ... cie-15 | cie-overcast (default multiple)"));
+  o_zl_ = add(sub->add_option("--zenith-luminance", zenith_luminance_, "CIE skies: zenith luminance cd/m2 (default gensky-style formula)"));
 }
 
 SunPlacement SunSkyOptions::place_sun() const {
@@ -66,6 +70,12 @@ SunPlacement SunSkyOptions::place_sun() const {
   if (o_lat_->count() == 0 || o_lon_->count() == 0 || o_time_->count() == 0)
     throw InputError("sun from place and time needs all of --lat, --lon and --time");
   return sun_at(time_, "--time");
+}
+
+std::string SunSkyOptions::first_given() const {
+  for (const CLI::Option* o : all_)
+    if (o->count() > 0) return o->get_name();
+  return "";
 }
 
 bool SunSkyOptions::moment_given() const {

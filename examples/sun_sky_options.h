@@ -7,6 +7,7 @@
 // Conventions: world x east, y north, z up; azimuth in degrees clockwise from north; sun
 // direction = (sin az·cos alt, cos az·cos alt, sin alt); altitudes are apparent (refracted).
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -37,6 +38,8 @@ class SunSkyOptions {
   SunPlacement place_sun() const;
   // True if any of --sun-altitude, --sun-azimuth, --time was given (a single moment).
   bool moment_given() const;
+  // The first of all these options that was given on the command line ("" if none).
+  std::string first_given() const;
   // The sun at local time `time` (ISO 8601; --tz is the UTC offset of a time without one) at
   // --lat/--lon (required: InputError naming `where` and the missing flag) with the SPA options;
   // `where` prefixes messages (e.g. "times.csv:3").
@@ -60,6 +63,7 @@ class SunSkyOptions {
   double zenith_luminance_ = 0;
   CLI::Option *o_alt_ = nullptr, *o_az_ = nullptr, *o_lat_ = nullptr, *o_lon_ = nullptr, *o_time_ = nullptr,
               *o_tz_ = nullptr, *o_zl_ = nullptr;
+  std::vector<CLI::Option*> all_;
 };
 
 }  // namespace skyband::cli

@@ -108,6 +108,34 @@ void ProjectedSkyGrid::add_scaled(const ProjectedSkyGrid& other, double k) {
     data_[i] = static_cast<float>(static_cast<double>(data_[i]) + k * static_cast<double>(other.data_[i]));
 }
 
+ProjectedSkyGrid ProjectedSkyGrid::sample(int channels, const std::function<void(const Vec3&, double*)>& f, int threads) {
+  if (channels < 1 || channels > kMaxChannels)
+    throw std::invalid_argument("ProjectedSkyGrid::sample: 1 to 12 channels, got " + std::to_string(channels));
+  ProjectedSkyGrid g;
+  g.channels_ = channels;
+  const std::size_t kC = static_cast<std::size_t>(channels);
+  g.data_.assign(static_cast<std::size_t>(kNodes) * kNodes * kC, 0.0f);
+  run_with_threads(threads, [&] {
+    tbb::parallel_for(0, kNodes, [&](int iy) {
+      double l[kMaxChannels], inner[kMaxChannels];
+      const double h = 2.0 / SkyRadianceGrid::kCells;
+      for (int ix = 0; ix < kNodes; ++ix) {
+        const double px = -1.0 + ix * h, py = -1.0 + iy * h;
+        const double r = std::sqrt(px * px + py * py);
+        f(disk_direction(px, py), l);
+        if (r > 1.0) {  // the linear extension across the rim (SkyRadianceGrid), clamped at 0
+          const double k = (2.0 - r) / r;
+          f(disk_direction(px * k, py * k), inner);
+          for (std::size_t c = 0; c < kC; ++c) l[c] = std::max(0.0, 2.0 * l[c] - inner[c]);
+        }
+        float* d = &g.data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kC];
+        for (std::size_t c = 0; c < kC; ++c) d[c] = static_cast<float>(l[c]);
+      }
+    });
+  });
+  return g;
+}
+
 void ProjectedSkyGrid::lookup(const Vec3& dir, double* out) const {
   sky_grid_interpolate(data_.data(), static_cast<std::size_t>(channels_), dir, out);
 }

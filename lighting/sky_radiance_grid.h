@@ -102,6 +102,10 @@ class ProjectedSkyGrid {
   // time-integrated sky (Σ_t hours_t·L_t) for cumulative irradiation is built this way. An empty
   // grid (default-constructed) takes other's shape.
   void add_scaled(const ProjectedSkyGrid& other, double k);
+  // The grid of `channels` (1..kMaxChannels) functions of direction sampled directly at the
+  // nodes, with the same horizon extension as SkyRadianceGrid: `f(unit direction above the
+  // horizon, out[channels])`, evaluated in parallel (`threads` = 0: all cores).
+  static ProjectedSkyGrid sample(int channels, const std::function<void(const Vec3&, double*)>& f, int threads = 0);
   // The same for a compile-time channel count N == channels() (the renderer's hot loop).
   template <int N>
   void lookup_n(const Vec3& dir, double* out) const {

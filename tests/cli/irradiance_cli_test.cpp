@@ -244,3 +244,98 @@ BOOST_AUTO_TEST_CASE(times_errors) {
       {base + q(d / "alt.csv") + " --sun-altitude 20", "--times"},
   }, d / "out.csv");
 }
+
+// --weather on a shared EPW file: the cube's open top receives the file's diffuse and direct
+// light (the README of ../shared/data/weather gives Chicago's annual sums: GHI 1406.6, DHI 660.3
+// kWh/m²; the components with the sun at mid-interval add up to the GHI column within 1.5 %), no
+// ground; its south wall sees half the ground, ρ·GHI/2 with the file's albedo; a period is a
+// part of the year; the timing check warns on a file whose radiation comes early (Heino, ~58
+// min per the README).
+BOOST_AUTO_TEST_CASE(a_year_of_weather) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_weather");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\n"
+                                  "top,5,5,10,0,0,1\n"
+                                  "southwall,5,0,5,0,-1,0\n";
+  const fs::path shared(SKYBAND_SHARED_DATA);
+  const fs::path chicago = shared / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather ";
+  const auto r = run_skyband(base + q(chicago) + " --out " + q(d / "year.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);  // Chicago is centred on its sun
+  std::ifstream f(d / "year.csv");
+  std::string header;
+  std::getline(f, header);
+  BOOST_TEST(header ==
+             "id,x,y,z,nx,ny,nz,svf,sky_exposure,ground_view,global_kWh_m2,sky_kWh_m2,sun_kWh_m2,ground_kWh_m2,"
+             "global_klxh,sun_hours");
+  const auto rows = read_csv(d / "year.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 2u);
+  const auto& top = rows[0];
+  BOOST_TEST(num(top, "sky_kWh_m2") == 660.3, tt::tolerance(1e-4));
+  BOOST_TEST(num(top, "global_kWh_m2") == 1406.6, tt::tolerance(0.015));
+  BOOST_TEST(num(top, "ground_kWh_m2") == 0.0);
+  BOOST_TEST(num(top, "sun_hours") > 4300.0);  // about half the year's 8760 h, more at this latitude's summer
+  BOOST_TEST(num(top, "sun_hours") < 4500.0);
+  const auto& wall = rows[1];
+  BOOST_TEST(num(wall, "ground_view") == 0.5, tt::tolerance(1e-9));
+  BOOST_TEST(num(wall, "global_kWh_m2") == num(wall, "sky_kWh_m2") + num(wall, "sun_kWh_m2") + num(wall, "ground_kWh_m2"),
+             tt::tolerance(1e-12));
+  BOOST_TEST(num(wall, "sun_hours") < num(top, "sun_hours"));
+
+  const auto june = run_skyband(base + q(chicago) + " --from 06-01 --to 06-30 --albedo 0.3 --out " + q(d / "june.csv"));
+  BOOST_TEST_REQUIRE(june.exit_code == 0, june.err);
+  const auto jr = read_csv(d / "june.csv");
+  BOOST_TEST(num(jr[0], "sun_hours") < 31 * 16.0);
+  BOOST_TEST(num(jr[0], "sun_hours") > 30 * 14.0);  // 41.98 N in June: ~15 h of daylight
+  BOOST_TEST(num(jr[1], "ground_kWh_m2") > 0.0);
+
+  const auto heino = run_skyband(base + q(shared / "weather" / "NLD_OV_Heino.062780_TMYx.2007-2021.epw") + " --out " +
+                                 q(d / "heino.csv"));
+  BOOST_TEST_REQUIRE(heino.exit_code == 0, heino.err);
+  BOOST_TEST(heino.err.find("earlier than the sun") != std::string::npos, heino.err);
+}
+
+BOOST_AUTO_TEST_CASE(bad_weather_input) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_weather_bad");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
+  std::ofstream(d / "short.epw") << "LOCATION,Nowhere,,,,,10,10,0,0\n";
+  const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                           q(d / "out.csv");
+  skyband::test::check_bad_input({
+      {base + " --weather " + q(chicago) + " --sun-altitude 30", "--sun-altitude"},
+      {base + " --weather " + q(chicago) + " --albedo 1.5", "--albedo"},
+      {base + " --weather " + q(chicago) + " --from 02-30 --to 03-01", "02-30"},
+      {base + " --weather " + q(chicago) + " --from 02-01", "--to"},
+      {base + " --weather " + q(d / "absent.epw"), "absent.epw"},
+      {base + " --weather " + q(d / "short.epw"), "short.epw"},
+      {base + " --albedo 0.3 --sun-altitude 30", "--weather"},
+      {base + " --weather " + q(chicago) + " --times " + q(d / "pts.csv"), "--times"},
+  }, d / "out.csv");
+}
+
+// A terrain sheet with a material the defaults do not know hides the ground from the facade
+// points: the command warns, and naming the material with --ground-materials gives the wall its
+// ground again (half the lower hemisphere: ground_view 0.5 for a wall on an open plane).
+BOOST_AUTO_TEST_CASE(unnamed_terrain_is_reported) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_weather_terrain");
+  std::ofstream(d / "block.obj") << "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 10\nv 10 0 10\nv 10 10 10\nv 0 10 10\n"
+                                    "v -500 -500 0\nv 500 -500 0\nv 500 500 0\nv -500 500 0\n"
+                                    "usemtl Wall\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 5 6 7 8\n"
+                                    "usemtl Meadow\nf 9 10 11 12\n";
+  std::ofstream(d / "pts.csv") << "x,y,z,nx,ny,nz\n5,-0.01,5,0,-1,0\n-0.01,5,3,-1,0,0\n";
+  const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+  const std::string base = "irradiance --mesh " + q(d / "block.obj") + " --points " + q(d / "pts.csv") + " --weather " +
+                           q(chicago) + " --from 03-01 --to 03-02 --out ";
+  const auto unnamed = run_skyband(base + q(d / "a.csv"));
+  BOOST_TEST_REQUIRE(unnamed.exit_code == 0, unnamed.err);
+  BOOST_TEST(unnamed.err.find("2 of the 2 points that face the ground see less than 5 % of it") != std::string::npos, unnamed.err);
+  const auto named = run_skyband(base + q(d / "b.csv") + " --ground-materials meadow");
+  BOOST_TEST_REQUIRE(named.exit_code == 0, named.err);
+  BOOST_TEST(named.err.find("points that face the ground") == std::string::npos, named.err);
+  const auto rows = read_csv(d / "b.csv");
+  BOOST_TEST_REQUIRE(rows.size() == 2u);
+  BOOST_TEST(num(rows[0], "ground_view") == 0.5, tt::tolerance(1e-6));
+}
