@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <numeric>
 #include <optional>
+#include <tuple>
 
 #include "examples/command_registry.h"
 #include "examples/demo_scene.h"
@@ -46,6 +47,7 @@
 #include "io/points_csv.h"
 #include "io/epw_reader.h"
 #include "lighting/climate_irradiation.h"
+#include "lighting/moment_series.h"
 #include "lighting/colour.h"
 #include "lighting/point_irradiance.h"
 #include "lighting/weather_hours.h"
@@ -72,7 +74,26 @@ struct IrradianceArgs {
   std::optional<double> albedo;
   std::vector<std::string> ground_materials;
   CLI::Option* o_ground = nullptr;
+  std::string dates, zone;  // --date FIRST[:LAST], --zone NAME
+  double step_minutes = 10;
+  CLI::Option* o_step = nullptr;
+  bool sun_only = false;
 };
+
+// The moments of --date/--step/--zone (lighting/moment_series.h): every step through the days,
+// at the middle of each step, with the sun by the SPA at --lat/--lon.
+std::vector<SunMoment> generated_moments(const IrradianceArgs& a) {
+  MomentSeriesSpec spec;
+  std::tie(spec.first_date, spec.last_date) = parse_date_range(a.dates, "--date");
+  spec.step_minutes = a.step_minutes;
+  spec.zone = a.zone;
+  spec.utc_offset_hours = a.sun_sky.utc_offset_given();
+  const std::vector<TimedMoment> times = moment_series(spec);
+  std::vector<SunMoment> moments;
+  moments.reserve(times.size());
+  for (const TimedMoment& t : times) moments.push_back({a.sun_sky.sun_at(t.time, "--date").direction(), t.hours});
+  return moments;
+}
 
 // Accuracy and threads from the shared per-point options (validated there).
 PointIrradianceOptions irradiance_options(const PointJobArgs& job) {
@@ -115,15 +136,45 @@ std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
   return moments;
 }
 
-// --times: irradiation summed over the file's moments.
+// --sun-only: sun hours over the moments, no sky model.
+void run_sun_hours(const IrradianceArgs& a, const std::vector<SunMoment>& moments) {
+  const PointIrradianceOptions opt = irradiance_options(a.job);
+  TriangleSoup soup = a.job.load_meshes();
+  const PointsTable table = read_points_csv(a.job.points);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Scene scene(std::move(soup));
+  Progress progress("irradiance", !a.job.quiet);
+  const std::vector<PointIrradiation> r =
+      compute_point_sun_hours(scene, table.points, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::vector<std::string> columns = {"svf", "sky_exposure", "sun_hours"};
+  std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    values[0][i] = r[i].svf;
+    values[1][i] = r[i].sky_exposure;
+    values[2][i] = r[i].sun_hours;
+  }
+  write_points_csv(a.job.out, table, columns, values);
+  if (!a.job.quiet) {
+    double hours = 0;
+    for (const SunMoment& m : moments) hours += m.hours;
+    std::fprintf(stderr, "irradiance: sun hours of %zu points over %zu moments (%.2f h) in %.2f s; %s; wrote %s\n", r.size(),
+                 moments.size(), hours, seconds, summary(r).c_str(), a.job.out.c_str());
+  }
+}
+
+// --times / --date: irradiation summed over the moments.
 void run_times(const IrradianceArgs& a) {
+  const char* source = a.times.empty() ? "--date" : "--times";
   if (a.sun_sky.moment_given())
-    throw InputError("--times: the suns come from the times file; --sun-altitude, --sun-azimuth and --time do not "
-                     "apply (--tz gives the UTC offset of times written without one)");
+    throw InputError(std::string(source) + ": the suns come from " + (a.times.empty() ? "the dates" : "the times file") +
+                     "; --sun-altitude, --sun-azimuth and --time do not apply (--tz gives the UTC offset of times "
+                     "written without one)");
   const PointIrradianceOptions opt = irradiance_options(a.job);
   const AtmosphereParams atm = a.sun_sky.atmosphere();
   const SkyModelSpec spec = a.sun_sky.sky_spec();
-  const std::vector<SunMoment> moments = read_moments(a);
+  const std::vector<SunMoment> moments = a.times.empty() ? generated_moments(a) : read_moments(a);
+  if (a.sun_only) return run_sun_hours(a, moments);
 
   TriangleSoup soup = a.job.load_meshes();
   const PointsTable table = read_points_csv(a.job.points);
@@ -269,13 +320,19 @@ void run(const IrradianceArgs& a) {
     return run_demo(a);
   }
   if (!a.weather.empty()) {
-    if (!a.times.empty()) throw InputError("--weather and --times: give one of them");
+    if (!a.times.empty() || !a.dates.empty())
+      throw InputError(std::string("--weather and ") + (a.times.empty() ? "--date" : "--times") + ": give one of them");
+    if (a.sun_only) throw InputError("--sun-only applies to --times and --date (--weather gives sun_hours with the rest)");
     a.job.require_files("irradiance");
     return run_weather(a);
   }
   if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count())
     throw InputError("--from, --to, --albedo and --ground-materials need --weather");
-  if (!a.times.empty()) {
+  if (!a.times.empty() && !a.dates.empty()) throw InputError("--times and --date: give one of them");
+  if (a.dates.empty() && (a.o_step->count() || !a.zone.empty()))
+    throw InputError(a.zone.empty() ? "--step needs --date" : "--zone needs --date");
+  if (a.sun_only && a.times.empty() && a.dates.empty()) throw InputError("--sun-only needs --times or --date");
+  if (!a.times.empty() || !a.dates.empty()) {
     a.job.require_files("irradiance");
     return run_times(a);
   }
@@ -350,6 +407,13 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
                                    "With --weather: material names (any case) of the triangles that are ground and hide no "
                                    "ground (default: ground, terrain, road, water, forest, grass, landuse, ...)")
                        ->delimiter(',');
+  cmd->add_option("--date", args->dates,
+                  "Moments instead of a times file: every --step minutes through the local day(s) YYYY-MM-DD or "
+                  "FIRST:LAST, at the middle of each step, in --zone (or --tz); needs --lat --lon");
+  args->o_step = cmd->add_option("--step", args->step_minutes, "With --date: minutes per moment (default 10)");
+  cmd->add_option("--zone", args->zone, "With --date: IANA time zone, e.g. Europe/Amsterdam (daylight saving applied)");
+  cmd->add_flag("--sun-only", args->sun_only,
+                "With --times or --date: sun hours only (columns svf, sky_exposure, sun_hours), no sky model per moment");
   cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table (needs a sun)");
   cmd->callback([args] { run(*args); });
   return cmd;

@@ -85,9 +85,21 @@ bool SunSkyOptions::moment_given() const {
 SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& where) const {
   if (o_lat_->count() == 0 || o_lon_->count() == 0)
     throw InputError(where + ": a sun from a time needs --lat and --lon");
+  require_range("--tz", tz_hours_, -18.0, 18.0, "UTC offset must be in [-18, 18] hours");
+  SunPlacement p = sun_at(parse_iso8601(time, where, o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt), where);
+  p.source["time"] = time;
+  return p;
+}
+
+std::optional<double> SunSkyOptions::utc_offset_given() const {
+  return o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt;
+}
+
+SunPlacement SunSkyOptions::sun_at(const LocalDateTime& time, const std::string& where) const {
+  if (o_lat_->count() == 0 || o_lon_->count() == 0)
+    throw InputError(where + ": a sun from a time needs --lat and --lon");
   require_range("--lat", lat_deg_, -90.0, 90.0, "latitude must be in [-90, 90] degrees");
   require_range("--lon", lon_deg_, -180.0, 180.0, "longitude must be in [-180, 180] degrees (east positive)");
-  require_range("--tz", tz_hours_, -18.0, 18.0, "UTC offset must be in [-18, 18] hours");
   require_range("--delta-t", delta_t_s_, -8000.0, 8000.0, "ΔT must be in [-8000, 8000] s");
   require_range("--pressure-mbar", pressure_mbar_, 1e-3, 5000.0, "pressure must be in (0, 5000] mbar");
   require_range("--temperature-c", temperature_C_, -272.0, 6000.0, "temperature must be above -273 °C");
@@ -95,7 +107,7 @@ SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& w
   in.latitude_deg = lat_deg_;
   in.longitude_deg = lon_deg_;
   in.elevation_m = elevation_m_;
-  in.time = parse_iso8601(time, where, o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt);
+  in.time = time;
   in.delta_t_s = delta_t_s_;
   in.pressure_mbar = pressure_mbar_;
   in.temperature_C = temperature_C_;
@@ -104,7 +116,6 @@ SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& w
                         {"latitude_deg", lat_deg_},
                         {"longitude_deg", lon_deg_},
                         {"elevation_m", elevation_m_},
-                        {"time", time},
                         {"utc_offset_hours", in.time.utc_offset_hours},
                         {"delta_t_s", delta_t_s_},
                         {"julian_day", r.julian_day},

@@ -6,6 +6,7 @@
 //
 // Conventions: world x east, y north, z up; azimuth in degrees clockwise from north; sun
 // direction = (sin az·cos alt, cos az·cos alt, sin alt); altitudes are apparent (refracted).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lighting/sky_model.h"
+#include "lighting/sun_position.h"
 
 namespace skyband::cli {
 
@@ -44,6 +46,10 @@ class SunSkyOptions {
   // --lat/--lon (required: InputError naming `where` and the missing flag) with the SPA options;
   // `where` prefixes messages (e.g. "times.csv:3").
   SunPlacement sun_at(const std::string& time, const std::string& where) const;
+  // The same for a parsed local time (its own UTC offset).
+  SunPlacement sun_at(const LocalDateTime& time, const std::string& where) const;
+  // --tz when given.
+  std::optional<double> utc_offset_given() const;
   // Atmosphere parameters (validated) and the sky model spec (validated).
   AtmosphereParams atmosphere() const;
   SkyModelSpec sky_spec() const;

@@ -136,4 +136,24 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
       });
 }
 
+std::vector<PointIrradiation> compute_point_sun_hours(const Scene& scene, std::span<const QueryPoint> points,
+                                                      std::span<const SunMoment> moments,
+                                                      const PointIrradianceOptions& options,
+                                                      const std::function<void(std::size_t, std::size_t)>& progress) {
+  std::vector<SunMoment> up;
+  for (std::size_t t = 0; t < moments.size(); ++t) {
+    const SunMoment& m = moments[t];
+    if (!(m.hours >= 0) || !std::isfinite(m.hours))
+      throw InputError("sun hours: moment " + std::to_string(t + 1) + ": hours " + std::to_string(m.hours) +
+                       " must be finite and >= 0");
+    if (m.sun_dir.z() > 0 && m.hours > 0) up.push_back({m.sun_dir.normalized(), m.hours});
+  }
+  return for_each_point<PointIrradiation>(
+      scene, points, options, progress,
+      [&](const VisibleSky&, const QueryPoint& q, SkyVisibility& worker, PointIrradiation& r) {
+        for (const SunMoment& m : up)
+          if (q.normal.dot(m.sun_dir) > 0 && worker.direction_visible(q, m.sun_dir)) r.sun_hours += m.hours;
+      });
+}
+
 }  // namespace skyband

@@ -103,4 +103,12 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
                                                         const std::function<void(std::size_t, std::size_t)>& progress = {},
                                                         const std::function<void(std::size_t, std::size_t)>& sky_progress = {});
 
+// The sun alone over many moments (no sky model is built: a sun-hours study needs none): svf,
+// sky_exposure, sun_hours and method of each point; the irradiation fields stay 0. A moment
+// counts where its sun is above the horizon, in front of the face and not hidden.
+std::vector<PointIrradiation> compute_point_sun_hours(const Scene& scene, std::span<const QueryPoint> points,
+                                                      std::span<const SunMoment> moments,
+                                                      const PointIrradianceOptions& options,
+                                                      const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 }  // namespace skyband

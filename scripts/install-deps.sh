@@ -15,6 +15,7 @@ PACKAGES=(
   libcli11-dev                            # command-line parsing
   nlohmann-json3-dev                      # --json output, reports
   libtomlplusplus-dev                     # scene files
+  libhowardhinnant-date-dev tzdata        # named time zones (IANA tz database) for moments
 )
 if [ "${1:-}" = "--bench" ]; then PACKAGES+=(libembree-dev); fi   # bench_sky_vs_monte_carlo's baseline
 missing=()

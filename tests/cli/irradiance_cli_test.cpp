@@ -339,3 +339,47 @@ BOOST_AUTO_TEST_CASE(unnamed_terrain_is_reported) {
   BOOST_TEST_REQUIRE(rows.size() == 2u);
   BOOST_TEST(num(rows[0], "ground_view") == 0.5, tt::tolerance(1e-6));
 }
+
+// Moments from --date/--step/--zone instead of a times file: --sun-only gives the same sun hours
+// as the full sums (which build a sky per moment) and as a hand-written times file holding the
+// same moments; on the equinox at the equator the open roof sees the sun's centre (refracted) for
+// a little over 12 h, so 12 or 13 of the 24 hourly moments.
+BOOST_AUTO_TEST_CASE(generated_moments_and_the_sun_only_path) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_dates");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\ntop,5,5,10,0,0,1\nwall,5,0,5,0,-1,0\n";
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --lat 0 --lon 0 ";
+  const auto fast = run_skyband(base + "--date 2026-03-20 --step 60 --zone UTC --sun-only --out " + q(d / "fast.csv"));
+  BOOST_TEST_REQUIRE(fast.exit_code == 0, fast.err);
+  const auto full = run_skyband(base + "--date 2026-03-20 --step 60 --zone UTC --out " + q(d / "full.csv"));
+  BOOST_TEST_REQUIRE(full.exit_code == 0, full.err);
+  {
+    std::ofstream t(d / "times.csv");
+    t << "time,hours\n";
+    for (int k = 0; k < 24; ++k) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "2026-03-20T%02d:30:00Z,1\n", k);
+      t << buf;
+    }
+  }
+  const auto file = run_skyband(base + "--times " + q(d / "times.csv") + " --sun-only --out " + q(d / "file.csv"));
+  BOOST_TEST_REQUIRE(file.exit_code == 0, file.err);
+  const auto a = read_csv(d / "fast.csv"), b = read_csv(d / "full.csv"), c = read_csv(d / "file.csv");
+  BOOST_TEST_REQUIRE(a.size() == 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    BOOST_TEST(num(a[i], "sun_hours") == num(b[i], "sun_hours"));
+    BOOST_TEST(num(a[i], "sun_hours") == num(c[i], "sun_hours"));
+  }
+  BOOST_TEST(num(a[0], "sun_hours") >= 12.0);  // hourly steps: 12 or 13 moments have the sun up
+  BOOST_TEST(num(a[0], "sun_hours") <= 13.0);
+  BOOST_TEST(a[0].count("sky_Wh_m2") == 0u);  // the sun-only columns
+  skyband::test::check_bad_input({
+      {base + "--date 2026-03-20 --out " + q(d / "bad.csv"), "--zone"},
+      {base + "--date 2026-03-20 --zone Mars/Olympus --out " + q(d / "bad.csv"), "Mars/Olympus"},
+      {base + "--date 2026-13-01 --zone UTC --out " + q(d / "bad.csv"), "2026-13-01"},
+      {base + "--date 2026-03-20 --zone UTC --step 0 --out " + q(d / "bad.csv"), "--step"},
+      {base + "--step 10 --out " + q(d / "bad.csv"), "--date"},
+      {base + "--sun-only --sun-altitude 30 --out " + q(d / "bad.csv"), "--sun-only"},
+      {base + "--date 2026-03-20 --zone UTC --times " + q(d / "times.csv") + " --out " + q(d / "bad.csv"), "--times"},
+  }, d / "bad.csv");
+}
