@@ -171,7 +171,7 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
     const Spectrum brdf = m->diffuse_brdf();
     diffuse_projections.push_back({xyz_weights(0) * brdf, xyz_weights(1) * brdf, xyz_weights(2) * brdf});
   }
-  SkyLutCache luts([&grid](const Vec3& d, Spectrum& out) { grid(d, out); }, 360, 1e-9, diffuse_projections);
+  SkyLutCache luts([&grid](const Vec3& d, Spectrum& out) { grid(d, out); }, 360, 1e-9, diffuse_projections, false);
   // Specular sky in XYZ (specular_sky_colour.h): one projected sky per distinct Fresnel table of
   // a specular material (slots without a specular term map to an entry left empty).
   std::vector<const FresnelTable*> slot_tables;

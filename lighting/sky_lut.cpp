@@ -125,13 +125,20 @@ Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut)
 }
 
 SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum,
-                         std::vector<std::vector<Spectrum>> projections)
-    : sky_(std::move(sky)), alpha_cells_(alpha_cells), quantum_(frame_quantum), projections_(std::move(projections)) {
+                         std::vector<std::vector<Spectrum>> projections, bool keep_spectral)
+    : sky_(std::move(sky)),
+      alpha_cells_(alpha_cells),
+      quantum_(frame_quantum),
+      projections_(std::move(projections)),
+      keep_spectral_(keep_spectral) {
   if (!(frame_quantum > 0)) throw InputError("sky look-up table cache: frame quantum must be > 0, got " + std::to_string(frame_quantum));
   if (alpha_cells < 1) throw InputError("sky look-up table cache: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
 }
 
-std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) { return entry_for(v)->lut; }
+std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) {
+  if (!keep_spectral_) throw std::logic_error("SkyLutCache::lut_for: the cache keeps projected tables only");
+  return entry_for(v)->lut;
+}
 
 std::shared_ptr<const SkyLut> SkyLutCache::projected_for(const PointVisibilityView& v, std::size_t k) {
   return entry_for(v)->projected.at(k);
@@ -178,8 +185,9 @@ std::shared_ptr<const SkyLutCache::Entry> SkyLutCache::entry_for(const PointVisi
     e.deltas[b] = v.band(b).delta_rad;
     deltas[b] = v.band(b).delta_rad;
   }
-  e.lut = std::make_shared<const SkyLut>(f, deltas, sky_, alpha_cells_);
-  for (const std::vector<Spectrum>& w : projections_) e.projected.push_back(std::make_shared<const SkyLut>(e.lut->project(w)));
+  auto spectral = std::make_shared<const SkyLut>(f, deltas, sky_, alpha_cells_);
+  for (const std::vector<Spectrum>& w : projections_) e.projected.push_back(std::make_shared<const SkyLut>(spectral->project(w)));
+  if (keep_spectral_) e.lut = std::move(spectral);
   std::lock_guard<std::mutex> lock(mutex_);
   auto& bucket = map_[hash];
   for (const auto& other : bucket)

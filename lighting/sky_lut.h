@@ -122,8 +122,12 @@ class SkyLutCache {
   // (frames closer than this share a table; the error this adds is of the same order).
   // `projections`: weight sets; with each spectral table the cache also keeps its projection by
   // every set (SkyLut::project), served by projected_for.
+  // `keep_spectral` false: only the projected tables are kept (a spectral table of N = 64 bands
+  // is 3.8 MB, a projection by 3 weights 0.28 MB: on a real model with a thousand distinct face
+  // orientations that is the difference between gigabytes and a few hundred MB); lut_for then
+  // throws std::logic_error.
   explicit SkyLutCache(SkyRadianceFn sky, int alpha_cells = 360, double frame_quantum = 1e-9,
-                       std::vector<std::vector<Spectrum>> projections = {});
+                       std::vector<std::vector<Spectrum>> projections = {}, bool keep_spectral = true);
 
   std::shared_ptr<const SkyLut> lut_for(const PointVisibilityView& v);
   // The table of v's frame and bands projected by weight set k.
@@ -147,6 +151,7 @@ class SkyLutCache {
   int alpha_cells_;
   double quantum_;
   std::vector<std::vector<Spectrum>> projections_;
+  bool keep_spectral_ = true;
   mutable std::mutex mutex_;
   std::unordered_map<std::uint64_t, std::vector<std::shared_ptr<const Entry>>> map_;
   std::size_t count_ = 0;
