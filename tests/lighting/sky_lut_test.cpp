@@ -172,6 +172,13 @@ BOOST_AUTO_TEST_CASE(projected_tables_commute_with_integration) {
     Spectrum s;
     BOOST_CHECK_THROW(projected->primitive(0, 1.0, s), std::logic_error);
     BOOST_CHECK_THROW(cache.projected_for(vc.view(0), 1), std::out_of_range);
+    // A cache that keeps the projections only (the renderer's) serves the same tables, bit for bit.
+    SkyLutCache lean(coloured_sky, 360, 1e-9, {w}, false);
+    double lean_out[2];
+    diffuse_sky_channels(vc.view(0), *lean.projected_for(vc.view(0), 0), lean_out);
+    BOOST_TEST(lean_out[0] == out[0]);
+    BOOST_TEST(lean_out[1] == out[1]);
+    BOOST_CHECK_THROW(lean.lut_for(vc.view(0)), std::logic_error);
   }
 }
 
