@@ -1,8 +1,12 @@
 #include "lighting/climate_irradiation.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "geometry/sky_visibility.h"
+#include "lighting/daylight_coefficients.h"
+#include "lighting/perez_sky.h"
 #include "lighting/visible_sky_integral.h"
 
 namespace skyband {
@@ -42,9 +46,42 @@ std::vector<std::string> default_ground_materials() {
           "waterbody", "transportation", "trafficarea"};
 }
 
+namespace {
+
+// Each hour's sky at the daylight-coefficient nodes, normalised so that the open horizontal
+// face's coefficients give exactly the hour's DHI: [hour][node], W·m⁻²·sr⁻¹ (0 without sky).
+std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const VisibilityOptions& visibility) {
+  const std::vector<DaylightNode>& nodes = daylight_nodes();
+  std::vector<float> open(nodes.size());
+  {
+    const Scene empty{TriangleSoup{}};
+    SkyVisibility up(empty, visibility, SkyFactorsMethod::exact);
+    daylight_coefficients(up.compute(QueryPoint{Vec3(0, 0, 0), Vec3(0, 0, 1)}), visibility, open);
+  }
+  std::vector<float> out(hours.size() * nodes.size(), 0.0f);
+  std::vector<double> l(nodes.size());
+  for (std::size_t h = 0; h < hours.size(); ++h) {
+    const WeatherHour& w = hours[h];
+    if (!(w.dhi_W_m2 > 0)) continue;
+    const double zenith = std::acos(std::clamp(w.sun_dir.z(), -1.0, 1.0));
+    const PerezSky sky = make_perez_sky(perez_sky_condition(w.dhi_W_m2, w.dni_W_m2, zenith, w.day_of_year), w.sun_dir, w.dhi_W_m2);
+    double e = 0;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      l[j] = std::max(0.0, nodes[j].a * sky.radiance(nodes[j].da) + nodes[j].b * sky.radiance(nodes[j].db));
+      e += open[j] * l[j];
+    }
+    const double k = e > 0 ? w.dhi_W_m2 / e : 0.0;
+    for (std::size_t j = 0; j < nodes.size(); ++j) out[h * nodes.size() + j] = static_cast<float>(k * l[j]);
+  }
+  return out;
+}
+
+}  // namespace
+
 ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint> points, std::span<const WeatherHour> hours,
                                  const ClimateIrradiationOptions& options,
-                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+                                 const std::function<void(std::size_t, std::size_t)>& progress,
+                                 const ClimateHourlySink& hourly) {
   ClimateRun run;
   run.points.resize(points.size());
   // The period's sky, sun and ground sources.
@@ -78,8 +115,24 @@ ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint>
       if (progress) progress(offset + done, 2 * n);
     };
   };
+  // The ground seen below the horizon: the mirrored points in the mirrored non-ground triangles.
+  const Scene mirrored(mirrored_non_ground(scene.soup(), options.ground_materials, run.ground_triangles));
+  std::vector<QueryPoint> down(points.begin(), points.end());
+  for (QueryPoint& q : down) {
+    q.position = Vec3(q.position.x(), q.position.y(), -q.position.z());
+    q.normal = Vec3(q.normal.x(), q.normal.y(), -q.normal.z());
+  }
+  for_each_visible_sky(mirrored, down, options.visibility, options.method, options.threads, both(0), false,
+                       [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) {
+                         PointClimate& r = run.points[i];
+                         r.ground_view = sky.factors.svf;
+                         r.ground_Wh_m2 = ground_Wh * r.ground_view;
+                         r.ground_lxh = ground_lxh * r.ground_view;
+                       });
+  // Hourly: the hours' skies at the daylight-coefficient nodes, once.
+  const std::vector<float> node_skies = hourly ? hourly_node_skies(hours, options.visibility) : std::vector<float>{};
   run.counts = for_each_visible_sky(
-      scene, points, options.visibility, options.method, options.threads, both(0), true,
+      scene, points, options.visibility, options.method, options.threads, both(n), true,
       [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
         PointClimate& r = run.points[i];
         r.svf = sky.factors.svf;
@@ -102,22 +155,30 @@ ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint>
             r.sun_lxh += s.lxh * c;
           }
         }
+        if (hourly) {
+          thread_local std::vector<float> dc, sky_h, sun_h, ground_h;
+          dc.resize(kDaylightCoefficientNodes);
+          daylight_coefficients(sky, options.visibility, dc);
+          sky_h.assign(hours.size(), 0.0f);
+          sun_h.assign(hours.size(), 0.0f);
+          ground_h.assign(hours.size(), 0.0f);
+          for (std::size_t h = 0; h < hours.size(); ++h) {
+            const WeatherHour& w = hours[h];
+            if (w.dhi_W_m2 > 0) {
+              const float* l = &node_skies[h * dc.size()];
+              double e = 0;
+              for (std::size_t j = 0; j < dc.size(); ++j) e += double(dc[j]) * double(l[j]);
+              sky_h[h] = static_cast<float>(e);
+            }
+            const double c = q.normal.dot(w.sun_dir);
+            if (w.sun_dir.z() > 0 && w.dni_W_m2 > 0 && c > 0 && worker.direction_visible(q, w.sun_dir))
+              sun_h[h] = static_cast<float>(w.dni_W_m2 * c);
+            ground_h[h] = static_cast<float>(w.albedo * w.ghi_W_m2 * r.ground_view);
+          }
+          hourly(i, sky_h, sun_h, ground_h);
+        }
       });
 
-  // The ground seen below the horizon: the mirrored points in the mirrored non-ground triangles.
-  const Scene mirrored(mirrored_non_ground(scene.soup(), options.ground_materials, run.ground_triangles));
-  std::vector<QueryPoint> down(points.begin(), points.end());
-  for (QueryPoint& q : down) {
-    q.position = Vec3(q.position.x(), q.position.y(), -q.position.z());
-    q.normal = Vec3(q.normal.x(), q.normal.y(), -q.normal.z());
-  }
-  for_each_visible_sky(mirrored, down, options.visibility, options.method, options.threads, both(n), false,
-                       [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) {
-                         PointClimate& r = run.points[i];
-                         r.ground_view = sky.factors.svf;
-                         r.ground_Wh_m2 = ground_Wh * r.ground_view;
-                         r.ground_lxh = ground_lxh * r.ground_view;
-                       });
   if (progress) progress(2 * n, 2 * n);
   return run;
 }

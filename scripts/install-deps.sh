@@ -16,6 +16,7 @@ PACKAGES=(
   nlohmann-json3-dev                      # --json output, reports
   libtomlplusplus-dev                     # scene files
   libhowardhinnant-date-dev tzdata        # named time zones (IANA tz database) for moments
+  libnetcdf-dev                           # hourly results (NetCDF-4, CF conventions)
 )
 if [ "${1:-}" = "--bench" ]; then PACKAGES+=(libembree-dev); fi   # bench_sky_vs_monte_carlo's baseline
 missing=()
