@@ -43,7 +43,7 @@ TriangleSoup mirrored_non_ground(const TriangleSoup& soup, const std::vector<std
 
 std::vector<std::string> default_ground_materials() {
   return {"ground", "terrain", "road", "water", "forest", "grass", "landuse", "plantcover", "tinrelief", "relieffeature",
-          "waterbody", "transportation", "trafficarea"};
+          "waterbody", "transportation", "trafficarea", "transportsquare", "railway"};
 }
 
 namespace {
