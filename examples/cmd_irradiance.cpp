@@ -34,6 +34,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <tuple>
@@ -46,6 +48,7 @@
 #include "io/csv_table.h"
 #include "io/points_csv.h"
 #include "io/epw_reader.h"
+#include "io/hourly_netcdf.h"
 #include "lighting/climate_irradiation.h"
 #include "lighting/moment_series.h"
 #include "lighting/colour.h"
@@ -70,7 +73,7 @@ struct IrradianceArgs {
   SunSkyOptions sun_sky;
   std::string times;
   bool demo = false;
-  std::string weather, from, to;
+  std::string weather, from, to, hourly;
   std::optional<double> albedo;
   std::vector<std::string> ground_materials;
   CLI::Option* o_ground = nullptr;
@@ -104,9 +107,28 @@ PointIrradianceOptions irradiance_options(const PointJobArgs& job) {
   return opt;
 }
 
+// The longest a times-file row may stand for: a leap year, 366 · 24 h. It keeps every sum over the
+// moments finite (two rows of 1e308 h summed to inf).
+constexpr double kMaxHoursPerMoment = 8784;
+
+// The sun of a times-file row's `time`: errors name the file and line, also the range checks of
+// the SPA (lighting/sun_position.cpp), which know no file.
+Vec3 sun_of_time_cell(const IrradianceArgs& a, const CsvTable& csv, std::size_t r, int column) {
+  const std::string where = csv.where(r);
+  const std::string time = csv.text(r, column);  // no control characters: a NUL would cut messages short
+  try {
+    return a.sun_sky.sun_at(time, where).direction();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.starts_with(where + " ") || what.starts_with(where + ":")) throw;  // parse_iso8601 names it
+    throw InputError(where + ": column 'time': value '" + time + "': " + what);
+  }
+}
+
 // The moments of a times file: a header with either `time` (ISO 8601 local time; needs --lat and
-// --lon) or `sun_altitude` and `sun_azimuth` (degrees), and optionally `hours` (the duration each
-// row stands for, ≥ 0; default 1). Errors name the file, line, column and value.
+// --lon) or `sun_altitude` and `sun_azimuth` (degrees: altitude in [-90, 90], azimuth in
+// [-360, 360] clockwise from north, as in a scene file), and optionally `hours` (the duration each
+// row stands for, in [0, 8784] h; default 1). Errors name the file, line, column and value.
 std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
   const CsvTable csv = read_csv_table(a.times, "times file");
   const std::string header_at = a.times + ":" + std::to_string(csv.header_line);
@@ -120,15 +142,19 @@ std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
     SunMoment m;
     if (by_time) {
-      m.sun_dir = a.sun_sky.sun_at(trim_csv_cell(csv.rows[r][static_cast<std::size_t>(ct)]), csv.where(r)).direction();
+      m.sun_dir = sun_of_time_cell(a, csv, r, ct);
     } else {
       const double alt = csv.number(r, calt), az = csv.number(r, caz);
       if (alt < -90 || alt > 90) throw InputError(csv.where(r) + ": sun_altitude " + fmt(alt) + " must be in [-90, 90] degrees");
-      m.sun_dir = SunPlacement{alt, az, {}}.direction();
+      if (az < -360 || az > 360)
+        throw InputError(csv.where(r) + ": sun_azimuth " + fmt(az) + " must be in [-360, 360] degrees (clockwise from north)");
+      const double az360 = std::fmod(az, 360.0);
+      m.sun_dir = SunPlacement{alt, az360 < 0 ? az360 + 360.0 : az360, {}}.direction();
     }
     if (ch >= 0) {
       m.hours = csv.number(r, ch);
-      if (m.hours < 0) throw InputError(csv.where(r) + ": hours " + fmt(m.hours) + " must be >= 0");
+      if (m.hours < 0 || m.hours > kMaxHoursPerMoment)
+        throw InputError(csv.where(r) + ": hours " + fmt(m.hours) + " must be in [0, 8784] (a row stands for at most a leap year)");
     }
     moments.push_back(m);
   }
@@ -203,6 +229,36 @@ void run_times(const IrradianceArgs& a) {
   }
 }
 
+// The hourly file's layout: the intervals in UTC (a typical year's records, which take each month
+// from another year, are placed in the year of its first record, so that time runs forward), the
+// points and their ids.
+HourlyNetcdfSpec hourly_spec(const IrradianceArgs& a, const WeatherSeries& series, const PointsTable& table) {
+  using namespace std::chrono;
+  HourlyNetcdfSpec spec;
+  spec.file = a.hourly;
+  const int year = series.records.empty() ? 2000 : series.records.front().year;
+  int last_month = 0, shift = 0;
+  for (const WeatherRecord& r : series.records) {
+    if (r.month < last_month) ++shift;  // a period wrapping over the new year
+    last_month = r.month;
+    const sys_days day{std::chrono::year{year + shift} / r.month / r.day};
+    const double midnight_h = duration<double, std::ratio<3600>>(day.time_since_epoch()).count();
+    const double end = midnight_h + r.hour - series.location.time_zone_hours;
+    spec.time_begin_h.push_back(end - r.interval_hours);
+    spec.time_end_h.push_back(end);
+  }
+  spec.points = table.points;
+  const auto id = std::find(table.header.begin(), table.header.end(), "id");
+  if (id != table.header.end())
+    for (const auto& row : table.rows) spec.point_ids.push_back(row[static_cast<std::size_t>(id - table.header.begin())]);
+  spec.title = "skyband irradiance --weather: hourly irradiance on calculation points";
+  spec.source = series.file.string() + " (" + series.location.name + ", " + fmt(series.location.latitude_deg) + " N, " +
+                fmt(series.location.longitude_deg) + " E, UTC" + (series.location.time_zone_hours >= 0 ? "+" : "") +
+                fmt(series.location.time_zone_hours) + ")";
+  spec.history = "skyband irradiance --weather " + a.weather + " --points " + a.job.points + " --out " + a.job.out;
+  return spec;
+}
+
 // --weather: irradiation over a weather file's period (lighting/climate_irradiation.h).
 void run_weather(const IrradianceArgs& a) {
   // Everything the user typed is checked before the work starts.
@@ -210,6 +266,16 @@ void run_weather(const IrradianceArgs& a) {
     throw InputError("--weather: the site, the sun and the sky come from the weather file; " + f + " does not apply");
   if (a.albedo && !(*a.albedo >= 0 && *a.albedo <= 1)) throw InputError("--albedo " + fmt(*a.albedo) + ": must be in [0, 1]");
   if (a.from.empty() != a.to.empty()) throw InputError(a.from.empty() ? "--to needs --from" : "--from needs --to");
+  if (!a.hourly.empty()) {
+    const std::filesystem::path h(a.hourly);
+    if (h.extension() != ".nc") throw InputError("--hourly '" + a.hourly + "': the file name must end in .nc (NetCDF-4)");
+    const std::filesystem::path dir = h.has_parent_path() ? h.parent_path() : std::filesystem::path(".");
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) throw InputError("--hourly '" + a.hourly + "': no folder " + dir.string());
+    const auto same = std::filesystem::weakly_canonical(h, ec);
+    if (!ec && same == std::filesystem::weakly_canonical(a.job.out, ec) && !ec)
+      throw InputError("--hourly '" + a.hourly + "': the same file as --out");
+  }
   std::optional<MonthDay> from, to;
   if (!a.from.empty()) from = parse_month_day(a.from, "--from"), to = parse_month_day(a.to, "--to");
   ClimateIrradiationOptions opt;
@@ -236,7 +302,14 @@ void run_weather(const IrradianceArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
   Progress progress("irradiance", !a.job.quiet);
-  const ClimateRun run = compute_point_climate(scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
+  std::unique_ptr<HourlyNetcdfWriter> hourly;
+  if (!a.hourly.empty()) hourly = std::make_unique<HourlyNetcdfWriter>(hourly_spec(a, series, table));
+  ClimateHourlySink sink;
+  if (hourly) sink = [&](std::size_t i, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground) {
+    hourly->write(i, sky, sun, ground);
+  };
+  const ClimateRun run =
+      compute_point_climate(scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); }, sink);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const std::vector<std::string> columns = {"svf",          "sky_exposure",  "ground_view",  "global_kWh_m2", "sky_kWh_m2",
@@ -256,6 +329,7 @@ void run_weather(const IrradianceArgs& a) {
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
+  if (hourly) hourly->commit();
   // A terrain sheet without a ground material hides the ground from every point: say so when most
   // points that face the ground see none of it.
   if (run.ground_triangles == 0) {
@@ -326,8 +400,8 @@ void run(const IrradianceArgs& a) {
     a.job.require_files("irradiance");
     return run_weather(a);
   }
-  if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count())
-    throw InputError("--from, --to, --albedo and --ground-materials need --weather");
+  if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count() || !a.hourly.empty())
+    throw InputError("--from, --to, --albedo, --ground-materials and --hourly need --weather");
   if (!a.times.empty() && !a.dates.empty()) throw InputError("--times and --date: give one of them");
   if (a.dates.empty() && (a.o_step->count() || !a.zone.empty()))
     throw InputError(a.zone.empty() ? "--step needs --date" : "--zone needs --date");
@@ -400,6 +474,9 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
                   "EnergyPlus weather file (EPW): sums over its period under the Perez all-weather sky, the sun and the "
                   "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
                   "(broadband shortwave), global_klxh, sun_hours");
+  cmd->add_option("--hourly", args->hourly,
+                  "With --weather: also the hourly irradiance of every point (sky, sun, ground, global; W/m2) as "
+                  "NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
   cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
   cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
   cmd->add_option("--albedo", args->albedo, "With --weather: ground reflectance [0, 1] (default: the file's, else 0.2)");

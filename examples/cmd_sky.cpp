@@ -26,6 +26,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -76,7 +77,12 @@ void run_sky(const SkyOptions& o) {
     png_path = exr_path;
     png_path.replace_extension(".png");
     const std::filesystem::path dir = exr_path.has_parent_path() ? exr_path.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(dir)) throw InputError("--out '" + o.out + "': folder '" + dir.string() + "' does not exist");
+    std::error_code ec;  // the error_code form: a name the system refuses (> 255 bytes) is the user's input
+    const std::filesystem::file_status status = std::filesystem::status(dir, ec);
+    if (!std::filesystem::is_directory(status))
+      throw InputError("--out '" + o.out + "': folder '" + dir.string() + "' " +
+                       (ec && status.type() != std::filesystem::file_type::not_found ? "cannot be used: " + ec.message()
+                                                                                       : std::string("does not exist")));
     if (o.size < 16 || o.size > 8192) throw InputError("--size " + std::to_string(o.size) + ": must be in [16, 8192] pixels");
   }
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))

@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <new>
 
 #include "examples/command_registry.h"
 #include "geometry/input_error.h"
+#include "io/utf8_text.h"
 
 namespace skyband::cli {
 
@@ -40,10 +42,17 @@ int main(int argc, char** argv) {
     // --help/--version exit 0; every malformed command line is an input error: exit code 2.
     return app.exit(e) == 0 ? 0 : 2;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "skyband: error: %s\n", e.what());
+    // One line whatever the message quotes: control characters (a line break inside a quoted
+    // CSV cell, a terminal escape) are printed escaped (io/utf8_text.h).
+    std::fprintf(stderr, "skyband: error: %s\n", printable_text(e.what()).c_str());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    // Never a silent success, never "internal error": the readers bound every count by the
+    // file's size, so what is left is an input (or a job) too large for this machine's memory.
+    std::fprintf(stderr, "skyband: error: out of memory (std::bad_alloc): the input is too large for this machine\n");
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "skyband: internal error: %s\n", e.what());
+    std::fprintf(stderr, "skyband: internal error: %s\n", printable_text(e.what()).c_str());
     return 3;
   }
   return 0;

@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "geometry/input_error.h"
+#include "io/utf8_text.h"
 
 namespace skyband {
 namespace {
@@ -55,7 +56,7 @@ std::vector<Record> parse_records(const std::string& name, std::string_view text
         // After the closing quote only a separator or the end of the record may follow.
         if (i < text.size() && text[i] != ',' && !at_line_end(i))
           throw InputError(name + ":" + std::to_string(line) + ": unexpected text after the closing quote of field " +
-                           std::to_string(r.cells.size() + 1) + ": '" + cell + "\"" + text[i] + "…'");
+                           std::to_string(r.cells.size() + 1) + ": '" + printable_text(cell + "\"" + text[i]) + "…'");
       } else {
         while (i < text.size() && text[i] != ',' && !at_line_end(i)) cell += text[i++];
       }
@@ -86,11 +87,14 @@ double parse_number(const std::string& name, std::size_t line, const std::string
   if (v.size() > 1 && v[0] == '+') v.remove_prefix(1);
   double x = 0;
   const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x, std::chars_format::general);
-  const std::string where = name + ":" + std::to_string(line) + ": column '" + column + "': ";
+  // The cell and the column name are the user's text: printable (a NUL would cut the message).
+  const std::string where = name + ":" + std::to_string(line) + ": column '" + printable_text(column) + "': ";
   if (v.empty()) throw InputError(where + "empty value");
-  if (ec == std::errc::result_out_of_range) throw InputError(where + "value '" + cell + "' is out of the range of a double");
-  if (ec != std::errc() || end != v.data() + v.size()) throw InputError(where + "value '" + cell + "' is not a number");
-  if (!std::isfinite(x)) throw InputError(where + "non-finite value '" + cell + "'");
+  if (ec == std::errc::result_out_of_range)
+    throw InputError(where + "value '" + printable_text(cell) + "' is out of the range of a double");
+  if (ec != std::errc() || end != v.data() + v.size())
+    throw InputError(where + "value '" + printable_text(cell) + "' is not a number");
+  if (!std::isfinite(x)) throw InputError(where + "non-finite value '" + printable_text(cell) + "'");
   return x;
 }
 
@@ -139,6 +143,15 @@ int CsvTable::column(const std::string& name) const {
 double CsvTable::number(std::size_t r, int c) const {
   const auto cu = static_cast<std::size_t>(c);
   return parse_number(file.string(), row_lines[r], trim(header[cu]), rows[r][cu]);
+}
+
+std::string CsvTable::text(std::size_t r, int c) const {
+  const auto cu = static_cast<std::size_t>(c);
+  std::string t = trim(rows[r][cu]);
+  if (!is_printable_text(t))
+    throw InputError(where(r) + ": column '" + printable_text(trim(header[cu])) + "': value '" + printable_text(t) +
+                     "' holds a control character or is not UTF-8");
+  return t;
 }
 
 std::string CsvTable::where(std::size_t r) const { return file.string() + ":" + std::to_string(row_lines[r]); }

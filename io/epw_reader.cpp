@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "geometry/input_error.h"
+#include "io/utf8_text.h"
 
 namespace skyband {
 namespace {
@@ -102,8 +103,9 @@ std::string_view trim(std::string_view s) {
 }
 
 // The text shown for a bad line or value: at most 40 characters.
+// At most 40 bytes of a field for a message, printable (a NUL would cut the message short).
 std::string excerpt(std::string_view s) {
-  return s.size() <= 40 ? std::string(s) : std::string(s.substr(0, 40)) + "…";
+  return s.size() <= 40 ? printable_text(s) : printable_text(s.substr(0, 40)) + "…";
 }
 
 std::string two_digits(int v) {

@@ -12,10 +12,12 @@
 #include <fstream>
 #include <iterator>
 #include <mutex>
+#include <new>
 #include <sstream>
 
 #include "geometry/input_error.h"
 #include "geometry/polygon_triangulation.h"
+#include "io/utf8_text.h"
 
 namespace skyband {
 namespace mesh_io {
@@ -39,10 +41,10 @@ double parse_coordinate(std::string_view token, const std::string& name, std::si
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value, std::chars_format::general);
   const std::string where = name + ":" + std::to_string(line) + ": ";
   if (ec == std::errc::result_out_of_range)
-    throw InputError(where + what + " '" + std::string(token) + "' is out of the range of a double");
+    throw InputError(where + what + " '" + printable_text(token) + "' is out of the range of a double");
   if (ec != std::errc() || end != t.data() + t.size())
-    throw InputError(where + what + " '" + std::string(token) + "' is not a number");
-  if (!std::isfinite(value)) throw InputError(where + "non-finite " + what + " '" + std::string(token) + "'");
+    throw InputError(where + what + " '" + printable_text(token) + "' is not a number");
+  if (!std::isfinite(value)) throw InputError(where + "non-finite " + what + " '" + printable_text(token) + "'");
   return value;
 }
 
@@ -52,9 +54,19 @@ long long parse_integer(std::string_view token, const std::string& name, std::si
   long long value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (ec != std::errc() || end != t.data() + t.size())
-    throw InputError(name + ":" + std::to_string(line) + ": " + what + " '" + std::string(token) +
+    throw InputError(name + ":" + std::to_string(line) + ": " + what + " '" + printable_text(token) +
                      "' is not an integer");
   return value;
+}
+
+void reject_nul_bytes(const std::string& name, std::string_view text, const char* what, std::size_t first_line) {
+  const std::size_t nul = text.find('\0');
+  if (nul == std::string_view::npos) return;
+  std::size_t line = first_line, line_start = 0;
+  for (std::size_t i = 0; i < nul; ++i)  // LF, CR LF and lone CR each end a line, as in for_each_line
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 >= text.size() || text[i + 1] != '\n'))) ++line, line_start = i + 1;
+  throw InputError(name + ":" + std::to_string(line) + ": NUL byte at column " + std::to_string(nul - line_start + 1) +
+                   " of " + what + " (binary data in a text file?)");
 }
 
 void add_vertex(PolygonSoup& soup, const Vec3& p) {
@@ -129,6 +141,11 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
   bool ok = false;
   try {
     ok = OpenMesh::IO::read_mesh(mesh, file.string(), options);
+  } catch (const std::bad_alloc&) {
+    // Never fall back silently: our pass has bounded every count by the file's size, so OpenMesh
+    // running out of memory means it read the file differently from our check.
+    throw InputError(file.string() + ": OpenMesh 9 ran out of memory reading this file (it reads its layout "
+                     "differently from skyband's check); the file is malformed");
   } catch (const std::exception& e) {
     reason = std::string("OpenMesh 9 threw: ") + e.what();
     return false;
@@ -235,7 +252,11 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
   PolygonSoup from_openmesh;
   std::string reason;
   const PolygonSoup* used = &soup;
-  if (read_with_openmesh(file, soup, from_openmesh, reason)) {
+  if (!soup.not_for_openmesh.empty()) {
+    // The validating pass knows layouts OpenMesh 9 mishandles (OFF always; a PLY element without
+    // properties): OpenMesh is not even tried.
+    r.reader = "skyband polygon soup (" + soup.not_for_openmesh + ")";
+  } else if (read_with_openmesh(file, soup, from_openmesh, reason)) {
     used = &from_openmesh;
     r.reader = "OpenMesh 9";
     if (from_openmesh.vertices.size() != soup.vertices.size())

@@ -8,9 +8,17 @@
 //     and throws InputError naming the file, the line (or element number in binary files) and
 //     the offending value. Coordinates are parsed with std::from_chars (correctly rounded) and
 //     kept verbatim: never shifted, scaled or rounded.
+//     Every count the file declares is bounded by what the rest of the file can hold before
+//     anything is reserved or looped over, so a lying header costs an error, not gigabytes.
 //  2. OpenMesh 9 (IO::read_mesh into a PolyMesh with double points) is used where it can do the
 //     job: only if it reproduces every face of the file, with bit-identical corner positions, in
-//     file order. Measured limits of OpenMesh 9.0 that make us fall back: its readers parse
+//     file order. If it runs out of memory the file is rejected (InputError), never silently read
+//     by step 3. It is not even tried where the validating pass knows it misreads the file
+//     (PolygonSoup::not_for_openmesh; found by fuzzing, 2026-12-01): any OFF file (OpenMesh 9's OFF
+//     reader takes layouts our pass accepts differently — counts on the header line, an extra
+//     value after a face, a comment right after the header — and then reads "-1" as a face size of
+//     ~4·10⁹, gigabytes, or uses an uninitialised face count) and a PLY file with an element
+//     without properties (OpenMesh loops over its count, up to 4·10⁹ times). Measured limits of OpenMesh 9.0 that make us fall back: its readers parse
 //     coordinates as 32-bit floats (678045.908 becomes 678045.9375), refuse OFF files with `#`
 //     comment lines, drop faces that would make the mesh non-manifold or have repeated indices,
 //     and drop a face of a PLY with CR LF line ends.
@@ -79,6 +87,7 @@ struct PolygonSoup {
   std::size_t faces_declared = 0;
   bool welded = false;                         // STL: identical positions merged while reading
   bool float32_exact = true;                   // every coordinate is exactly a 32-bit float
+  std::string not_for_openmesh;                // why OpenMesh must not read the file ("" = it may try)
   std::vector<std::string> notes;
 
   std::size_t polygon_count() const { return polygon_start.empty() ? 0 : polygon_start.size() - 1; }
@@ -109,6 +118,11 @@ void for_each_line(std::string_view text, F&& f) {
   }
   if (start < text.size()) f(line, text.substr(start));
 }
+// Text formats hold no NUL byte: InputError naming name:line and the column of the first one
+// (`what` says which part of the file is text, e.g. "the OBJ text"). Checked before parsing, so
+// no message can carry a NUL, which would cut it short (utf8_text.h).
+// `first_line` is the file line on which `text` starts.
+void reject_nul_bytes(const std::string& name, std::string_view text, const char* what, std::size_t first_line = 1);
 // Whitespace tokenizer (space, tab, vertical tab, form feed; also CR/LF if present).
 void split_tokens(std::string_view text, std::vector<std::string_view>& out);
 void add_vertex(PolygonSoup& soup, const Vec3& p);  // tracks float32_exact

@@ -5,6 +5,7 @@
 
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/utf8_text.h"
 
 namespace skyband::mesh_io {
 
@@ -22,6 +23,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
   std::uint32_t current_material = 0;
   std::unordered_map<std::string, std::uint32_t> material_ids;
   std::map<std::string, std::size_t> ignored_keywords;
+  reject_nul_bytes(name, bytes, "the OBJ text");
 
   for_each_line(bytes, [&](std::size_t line, std::string_view text) {
     if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
@@ -31,7 +33,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
     if (key == "v") {
       if (tokens.size() < 4)
         throw InputError(name + ":" + std::to_string(line) + ": vertex has " + std::to_string(tokens.size() - 1) +
-                         " coordinates, 3 needed: '" + std::string(text) + "'");
+                         " coordinates, 3 needed: '" + printable_text(text) + "'");
       static const char* axes[3] = {"x coordinate", "y coordinate", "z coordinate"};
       Vec3 p;
       for (int i = 0; i < 3; ++i) p[i] = parse_coordinate(tokens[static_cast<std::size_t>(i) + 1], name, line, axes[i]);
@@ -39,7 +41,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
     } else if (key == "f") {
       if (tokens.size() < 4)
         throw InputError(name + ":" + std::to_string(line) + ": face has " + std::to_string(tokens.size() - 1) +
-                         " vertices, at least 3 needed: '" + std::string(text) + "'");
+                         " vertices, at least 3 needed: '" + printable_text(text) + "'");
       for (std::size_t i = 1; i < tokens.size(); ++i) {
         const std::string_view corner = tokens[i];
         const std::string_view position = corner.substr(0, corner.find('/'));
@@ -50,7 +52,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
           if (index > max_index) {
             max_index = index;
             max_index_line = line;
-            max_index_token = std::string(corner);
+            max_index_token = printable_text(corner);
           }
         } else if (index < 0) {
           zero_based = static_cast<long long>(soup.vertices.size()) + index;  // relative: -1 = last vertex
@@ -91,8 +93,14 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
                      std::to_string(soup.vertices.size()) + " vertices");
   if (!any_usemtl) soup.polygon_material.clear();
   soup.faces_declared = soup.polygon_count();
-  for (const auto& [keyword, count] : ignored_keywords)
-    soup.notes.push_back("ignored " + std::to_string(count) + " line(s) with unknown OBJ keyword '" + keyword + "'");
+  std::size_t listed = 0;  // a garbage file may hold thousands of distinct "keywords": list a few
+  for (const auto& [keyword, count] : ignored_keywords) {
+    if (++listed > 10) {
+      soup.notes.push_back("ignored lines with " + std::to_string(ignored_keywords.size() - 10) + " more unknown OBJ keywords");
+      break;
+    }
+    soup.notes.push_back("ignored " + std::to_string(count) + " line(s) with unknown OBJ keyword '" + printable_text(keyword) + "'");
+  }
   return soup;
 }
 

@@ -2,6 +2,12 @@
 // binary_little_endian and binary_big_endian; vertex x, y, z (any scalar type), face list
 // vertex_indices / vertex_index (any integer count and index type); every other element and
 // property is read past and ignored. Header lines may end in CR LF.
+//
+// A count the header declares is never looped over or reserved before the data proves it: each
+// element's entries are checked against the bytes left when the element starts (binary: the
+// sizes of its scalars and list counts; ascii: one token and one separator per property), and
+// an element without properties (it holds no data in either encoding, whatever its count) is
+// skipped in O(1) and reported in a note.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -9,6 +15,7 @@
 
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/utf8_text.h"
 
 namespace skyband::mesh_io {
 namespace {
@@ -91,6 +98,8 @@ class BodyReader {
   std::string where() const {
     return format_ == 0 ? name_ + ":" + std::to_string(token_line_) : name_ + ": byte " + std::to_string(offset_ + last_start_);
   }
+  // Bytes of the body not read yet.
+  std::size_t remaining() const { return body_.size() - pos_; }
   std::size_t trailing_tokens() {
     std::size_t n = 0;
     if (format_ != 0) return body_.size() - pos_;
@@ -147,6 +156,7 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
     pos = eol == std::string::npos ? bytes.size() : eol + 1;
     ++line;
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    reject_nul_bytes(name, text, "the PLY header", line);
     split_tokens(text, tokens);
     const std::string where = name + ":" + std::to_string(line) + ": ";
     if (line == 1) {
@@ -156,44 +166,45 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
     if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
     if (tokens[0] == "format") {
       if (tokens.size() < 3 || tokens[2] != "1.0")
-        throw InputError(where + "unsupported PLY format line '" + std::string(text) + "'");
+        throw InputError(where + "unsupported PLY format line '" + printable_text(text) + "'");
       if (tokens[1] == "ascii") format = 0;
       else if (tokens[1] == "binary_little_endian") format = 1;
       else if (tokens[1] == "binary_big_endian") format = 2;
-      else throw InputError(where + "unknown PLY format '" + std::string(tokens[1]) + "'");
+      else throw InputError(where + "unknown PLY format '" + printable_text(tokens[1]) + "'");
     } else if (tokens[0] == "element") {
-      if (tokens.size() != 3) throw InputError(where + "malformed element line '" + std::string(text) + "'");
+      if (tokens.size() != 3) throw InputError(where + "malformed element line '" + printable_text(text) + "'");
       const long long count = parse_integer(tokens[2], name, line, "element count");
       if (count < 0 || count > 0xFFFFFFFFll) throw InputError(where + "element count " + std::to_string(count) + " is out of range");
-      elements.push_back({std::string(tokens[1]), static_cast<std::size_t>(count), line, {}});
+      elements.push_back({printable_text(tokens[1]), static_cast<std::size_t>(count), line, {}});
     } else if (tokens[0] == "property") {
       if (elements.empty()) throw InputError(where + "property before any element");
       Property p;
       if (tokens.size() == 5 && tokens[1] == "list") {
         p.is_list = true;
         if (!scalar_from_name(tokens[2], p.count_type) || !is_integer(p.count_type))
-          throw InputError(where + "list count type '" + std::string(tokens[2]) + "' is not an integer type");
+          throw InputError(where + "list count type '" + printable_text(tokens[2]) + "' is not an integer type");
         if (!scalar_from_name(tokens[3], p.type))
-          throw InputError(where + "unknown property type '" + std::string(tokens[3]) + "'");
-        p.name = tokens[4];
+          throw InputError(where + "unknown property type '" + printable_text(tokens[3]) + "'");
+        p.name = printable_text(tokens[4]);
       } else if (tokens.size() == 3) {
         if (!scalar_from_name(tokens[1], p.type))
-          throw InputError(where + "unknown property type '" + std::string(tokens[1]) + "'");
-        p.name = tokens[2];
+          throw InputError(where + "unknown property type '" + printable_text(tokens[1]) + "'");
+        p.name = printable_text(tokens[2]);
       } else {
-        throw InputError(where + "malformed property line '" + std::string(text) + "'");
+        throw InputError(where + "malformed property line '" + printable_text(text) + "'");
       }
       elements.back().properties.push_back(p);
     } else if (tokens[0] == "end_header") {
       ended = true;
     } else {
-      throw InputError(where + "unknown PLY header keyword '" + std::string(tokens[0]) + "'");
+      throw InputError(where + "unknown PLY header keyword '" + printable_text(tokens[0]) + "'");
     }
   }
   if (!ended) throw InputError(name + ": PLY header has no 'end_header' line");
   if (format < 0) throw InputError(name + ": PLY header has no 'format' line");
   soup.format = format == 0 ? "PLY (ascii)" : format == 1 ? "PLY (binary little endian)" : "PLY (binary big endian)";
 
+  if (format == 0) reject_nul_bytes(name, std::string_view(bytes).substr(pos), "the ascii PLY body", line + 1);
   BodyReader body(name, std::string_view(bytes).substr(pos), line + 1, format);
   body.set_offset(pos);
   bool have_vertices = false, have_faces = false, vertices_done = false;
@@ -214,7 +225,6 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
       if (ix < 0 || iy < 0 || iz < 0)
         throw InputError(name + ":" + std::to_string(e.header_line) + ": PLY vertex element lacks an x, y or z property");
       have_vertices = true;
-      soup.vertices.reserve(std::min(e.count, bytes.size() / 3));  // a lying count must not allocate gigabytes
     }
     if (face_element) {
       if (ifaces < 0)
@@ -224,6 +234,27 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
       have_faces = true;
       soup.faces_declared += e.count;
     }
+    if (e.properties.empty()) {
+      // No data in either encoding, whatever the count: skipped without looping over the count.
+      if (e.count > 0) {
+        soup.notes.push_back("element '" + e.name + "' (line " + std::to_string(e.header_line) + ") has no properties: its " +
+                             std::to_string(e.count) + " entries hold no data and were skipped");
+        if (soup.not_for_openmesh.empty())
+          soup.not_for_openmesh = "OpenMesh 9 would loop over the " + std::to_string(e.count) + " entries of element '" +
+                                  e.name + "', which has no properties";
+      }
+      continue;
+    }
+    // The smallest entry: binary, the bytes of its scalars and list counts (empty lists); ascii,
+    // one token and one separator per property (the file's last token may lack its separator).
+    std::size_t entry_bytes = 0;
+    for (const Property& p : e.properties) entry_bytes += format == 0 ? 2 : size_of(p.is_list ? p.count_type : p.type);
+    const std::size_t room = body.remaining() + (format == 0 ? 1 : 0);
+    if (e.count > room / entry_bytes)
+      throw InputError(name + ":" + std::to_string(e.header_line) + ": element '" + e.name + "' declares " +
+                       std::to_string(e.count) + " entries of at least " + std::to_string(entry_bytes) +
+                       " bytes each, but only " + std::to_string(body.remaining()) + " bytes of data are left");
+    if (vertex_element) soup.vertices.reserve(soup.vertices.size() + e.count);
     for (std::size_t i = 0; i < e.count; ++i) {
       Vec3 p = Vec3::Zero();
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {

@@ -10,16 +10,22 @@
 #include "geometry/input_error.h"
 #include "io/atomic_file.h"
 #include "io/csv_table.h"
+#include "io/utf8_text.h"
 
 namespace skyband {
 namespace {
 
-bool needs_quotes(const std::string& s) {
+constexpr std::string_view kBom = "\xEF\xBB\xBF";  // U+FEFF in UTF-8
+
+bool needs_quotes(const std::string& s, bool at_file_start) {
+  // At byte 0 a cell that begins with U+FEFF would be read back as a byte-order mark and lose
+  // it (csv_table.cpp strips one at byte 0): quoted, it starts with '"' and round-trips exactly.
+  if (at_file_start && s.starts_with(kBom)) return true;
   return s.find_first_of(",\"\r\n") != std::string::npos || (!s.empty() && (s.front() == ' ' || s.back() == ' '));
 }
 
-std::string csv_cell(const std::string& s) {
-  if (!needs_quotes(s)) return s;
+std::string csv_cell(const std::string& s, bool at_file_start = false) {
+  if (!needs_quotes(s, at_file_start)) return s;
   std::string q = "\"";
   for (const char c : s) {
     if (c == '"') q += '"';
@@ -55,9 +61,9 @@ PointsTable read_points_csv(const std::filesystem::path& file) {
       const double length = n.norm();
       const auto& cells = csv.rows[r];
       if (!(length > 0.0) || !std::isfinite(length))
-        throw InputError(csv.where(r) + ": normal (" + cells[static_cast<std::size_t>(cnx)] + ", " +
-                         cells[static_cast<std::size_t>(cny)] + ", " + cells[static_cast<std::size_t>(cnz)] +
-                         ") has zero or non-finite length");
+        throw InputError(csv.where(r) + ": normal (" + printable_text(cells[static_cast<std::size_t>(cnx)]) + ", " +
+                         printable_text(cells[static_cast<std::size_t>(cny)]) + ", " +
+                         printable_text(cells[static_cast<std::size_t>(cnz)]) + ") has zero or non-finite length");
       q.normal = n / length;
     }
     table.points.push_back(q);
@@ -89,14 +95,15 @@ void write_points_csv(const std::filesystem::path& file, const PointsTable& tabl
     std::string line;
     auto emit_row = [&](const std::vector<std::string>& cells, std::size_t row) {
       line.clear();
+      const bool header = row == static_cast<std::size_t>(-1);  // the header is written at byte 0
       for (std::size_t c = 0; c < cells.size(); ++c) {
         if (c) line += ',';
-        line += csv_cell(cells[c]);
+        line += csv_cell(cells[c], header && c == 0);
       }
       for (std::size_t c = 0; c < extra_values.size(); ++c) {
         if (!line.empty() || c) line += ',';
-        if (row == static_cast<std::size_t>(-1)) {
-          line += csv_cell(extra_columns[c]);
+        if (header) {
+          line += csv_cell(extra_columns[c], cells.empty() && c == 0);
         } else {
           char buffer[64];
           const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, extra_values[c][row]);

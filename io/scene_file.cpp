@@ -1,14 +1,19 @@
 #include "io/scene_file.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include <toml++/toml.h>
 
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/toml_ascii.h"
+#include "io/utf8_text.h"
 #include "lighting/material.h"
 #include "lighting/sun_position.h"
 
@@ -27,25 +32,112 @@ const std::set<std::string>& known_keys() {
   return k;
 }
 
-std::string node_text(const toml::node& n) {
-  std::ostringstream s;
-  if (const auto* str = n.as_string()) s << '"' << str->get() << '"';
-  else n.visit([&s](const auto& v) { s << v; });
-  return s.str();
+// A string as a TOML basic string for messages: quotes and backslashes escaped, control
+// characters written as escapes (utf8_text.h), so the message stays whole and on one line.
+std::string toml_quoted(std::string_view v) {
+  std::string q;
+  for (const char c : v) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c;
+  }
+  return '"' + printable_text(q) + '"';
+}
+
+std::string two_digits(unsigned v) {
+  char b[8];
+  std::snprintf(b, sizeof b, "%02u", v % 100u);
+  return b;
+}
+
+// TOML's forms (https://toml.io/en/v1.0.0): what parse_iso8601 reads back for sun.time.
+std::string date_text(const toml::date& d) {
+  char b[16];
+  std::snprintf(b, sizeof b, "%04u-%02u-%02u", unsigned{d.year}, unsigned{d.month}, unsigned{d.day});
+  return b;
+}
+std::string time_text(const toml::time& t) {
+  std::string s = two_digits(t.hour) + ":" + two_digits(t.minute) + ":" + two_digits(t.second);
+  if (t.nanosecond > 0 && t.nanosecond <= 999999999u) {
+    char b[16];
+    std::snprintf(b, sizeof b, "%09u", static_cast<unsigned>(t.nanosecond));
+    std::string digits = b;
+    while (digits.back() == '0') digits.pop_back();
+    s += "." + digits;
+  }
+  return s;
+}
+std::string date_time_text(const toml::date_time& dt) {
+  std::string s = date_text(dt.date) + "T" + time_text(dt.time);
+  if (dt.offset) {
+    const int minutes = dt.offset->minutes;
+    if (minutes == 0) return s + "Z";
+    const unsigned m = static_cast<unsigned>(minutes < 0 ? -minutes : minutes);
+    s += minutes < 0 ? '-' : '+';  // built with += : GCC 12 warns falsely (-Wrestrict) on "+" + string
+    s += two_digits(m / 60);
+    s += ':';
+    s += two_digits(m % 60);
+  }
+  return s;
+}
+
+std::string float_text(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v < 0 ? "-inf" : "inf";
+  char b[64];
+  const auto [end, ec] = std::to_chars(b, b + sizeof b, v);  // shortest round-trip form
+  std::string s(b, end);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+// A value as the user wrote it, for messages — our own formatter, never toml++'s: 3.3.0's has a
+// float-cast overflow (undefined behaviour) when it prints an array holding a float below 0.1
+// (found by fuzzing: `meshes = [0.01]`). Long arrays and tables are cut after a few items.
+std::string node_text(const toml::node& n, int depth = 0) {
+  if (const auto* v = n.as_string()) return toml_quoted(v->get());
+  if (const auto* v = n.as_integer()) return std::to_string(v->get());
+  if (const auto* v = n.as_floating_point()) return float_text(v->get());
+  if (const auto* v = n.as_boolean()) return v->get() ? "true" : "false";
+  if (const auto* v = n.as_date()) return date_text(v->get());
+  if (const auto* v = n.as_time()) return time_text(v->get());
+  if (const auto* v = n.as_date_time()) return date_time_text(v->get());
+  constexpr std::size_t kItems = 8;
+  if (const auto* a = n.as_array()) {
+    if (depth >= 3) return a->empty() ? "[]" : "[…]";
+    std::string s = "[";
+    for (std::size_t i = 0; i < a->size() && i < kItems; ++i) s += (i ? ", " : "") + node_text(*a->get(i), depth + 1);
+    return s + (a->size() > kItems ? ", …]" : "]");
+  }
+  if (const auto* t = n.as_table()) {
+    if (depth >= 3) return t->empty() ? "{}" : "{…}";
+    std::string s = "{";
+    std::size_t i = 0;
+    for (const auto& [k, v] : *t) {
+      if (i == kItems) {
+        s += ", …";
+        break;
+      }
+      s += (i++ ? ", " : "") + printable_text(k.str()) + " = " + node_text(v, depth + 1);
+    }
+    return s + "}";
+  }
+  return "?";
 }
 
 class Reader {
  public:
-  Reader(const toml::table& root, std::string file, std::map<std::string, std::string> overrides)
-      : root_(root), file_(std::move(file)), overrides_(std::move(overrides)) {}
+  Reader(const toml::table& root, std::string file, const AsciiToml& text, std::map<std::string, std::string> overrides)
+      : root_(root), file_(std::move(file)), text_(text), overrides_(std::move(overrides)) {}
 
-  // "file:line:col: key = value" or "--set key=value".
+  // "file:line:col: key = value" or "--set key=value" (line:col of the user's file).
   std::string where(const std::string& key, const toml::node* n) const {
-    if (auto it = overrides_.find(key); it != overrides_.end()) return "--set " + it->second;
+    if (auto it = overrides_.find(key); it != overrides_.end()) return "--set " + printable_text(it->second);
     std::string w = file_;
-    if (n && n->source().begin.line > 0)
-      w += ":" + std::to_string(n->source().begin.line) + ":" + std::to_string(n->source().begin.column);
-    return w + ": " + key + (n ? " = " + node_text(*n) : "");
+    if (n && n->source().begin.line > 0 && !(n->source().path && *n->source().path == "--set")) {
+      const auto& b = n->source().begin;
+      w += ":" + std::to_string(b.line) + ":" + std::to_string(text_.original_column(b.line, b.column));
+    }
+    return w + ": " + printable_text(key) + (n ? " = " + node_text(*n) : "");
   }
   [[noreturn]] void fail(const std::string& key, const toml::node* n, const std::string& why) const {
     throw InputError(where(key, n) + ": " + why);
@@ -78,10 +170,18 @@ class Reader {
     if (!b) fail(key, n, "expected true or false");
     return b->get();
   }
+  // A string value; a control character in it (from an escape such as \u0000) is an error: no
+  // name, path or time holds one, and a NUL would cut the messages that quote it.
+  const std::string& text(const std::string& key, const toml::node& n) const {
+    const auto* s = n.as_string();
+    if (!s) fail(key, &n, "expected a string");
+    if (!is_printable_text(s->get())) fail(key, &n, "the string holds a control character");
+    return s->get();
+  }
   std::optional<std::string> string(const std::string& key, bool allow_datetime = false) const {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;
-    if (const auto* s = n->as_string()) return s->get();
+    if (n->is_string()) return text(key, *n);
     if (allow_datetime && (n->is_date_time() || n->is_date() || n->is_time())) return node_text(*n);
     fail(key, n, "expected a string");
   }
@@ -108,8 +208,10 @@ class Reader {
       if (key == "materials.assign") {
         const auto* at = v.as_table();
         if (!at) fail(key, &v, "expected a table of usemtl-name = \"material\"");
-        for (const auto& [mk, mv] : *at)
+        for (const auto& [mk, mv] : *at) {
           if (!mv.is_string()) fail(key + "." + std::string(mk.str()), &mv, "expected a material name string");
+          text(key + "." + std::string(mk.str()), mv);
+        }
         continue;
       }
       if (const auto* sub = v.as_table(); sub && !known_keys().count(key)) {
@@ -123,23 +225,28 @@ class Reader {
  private:
   const toml::table& root_;
   std::string file_;
+  const AsciiToml& text_;
   std::map<std::string, std::string> overrides_;
 };
 
 // Applies "key=value" to the table; records key → original text.
 void apply_override(toml::table& root, const std::string& text, std::map<std::string, std::string>& origins) {
+  const std::string shown = "--set '" + printable_text(text) + "'";
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw InputError("--set '" + text + "': expected key=value (e.g. sun.altitude_deg=17)");
+  if (eq == std::string::npos || eq == 0) throw InputError(shown + ": expected key=value (e.g. sun.altitude_deg=17)");
   const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
   for (char c : key)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      throw InputError("--set '" + text + "': key '" + key + "' may hold only letters, digits, '_', '-' and '.'");
+      throw InputError(shown + ": key '" + printable_text(key) + "' may hold only letters, digits, '_', '-' and '.'");
+  if (const std::size_t bad = first_invalid_utf8(value); bad != std::string::npos)
+    throw InputError(shown + ": the value is not valid UTF-8 (at byte " + std::to_string(eq + 1 + bad) + ")");
+  if (!is_printable_text(value)) throw InputError(shown + ": the value holds a control character");
   std::vector<std::string> parts;
   std::size_t start = 0;
   for (;;) {
     const auto dot = key.find('.', start);
     parts.push_back(key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-    if (parts.back().empty()) throw InputError("--set '" + text + "': empty component in key '" + key + "'");
+    if (parts.back().empty()) throw InputError(shown + ": empty component in key '" + key + "'");
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
@@ -151,18 +258,19 @@ void apply_override(toml::table& root, const std::string& text, std::map<std::st
       t->insert_or_assign(parts[i], toml::table{});
       n = t->get(parts[i]);
     }
-    if (!n->is_table()) throw InputError("--set " + text + ": '" + parts[i] + "' is not a table in the scene");
+    if (!n->is_table()) throw InputError(shown + ": '" + parts[i] + "' is not a table in the scene");
     t = n->as_table();
   }
   bool done = false;
   try {
-    const std::string doc = "v = " + value;
-    toml::table parsed = toml::parse(std::string_view(doc), std::string_view("--set"));
+    const AsciiToml doc("v = " + value, "--set");  // toml++ sees ASCII only (toml_ascii.h)
+    toml::table parsed = toml::parse(std::string_view(doc.text()), std::string_view("--set"));
     if (toml::node* v = parsed.get("v"); v && (v->is_string() || v->is_number() || v->is_boolean() || v->is_array())) {
       t->insert_or_assign(parts.back(), std::move(*v));
       done = true;
     }
-  } catch (const toml::parse_error&) {
+  } catch (const toml::parse_error&) {  // not a TOML value: a plain string
+  } catch (const InputError&) {         // e.g. a bare non-ASCII word (sky.model=Җ): a plain string
   }
   if (!done) t->insert_or_assign(parts.back(), value);
   origins[key] = text;
@@ -172,16 +280,18 @@ void apply_override(toml::table& root, const std::string& text, std::map<std::st
 
 SceneDescription parse_scene(std::string_view text, const std::filesystem::path& name, std::span<const std::string> overrides) {
   const std::string file = name.string();
+  const AsciiToml ascii(text, file);  // toml++ 3.3.0 never sees a non-ASCII character (toml_ascii.h)
   toml::table root;
   try {
-    root = toml::parse(text, std::string_view(file));
+    root = toml::parse(std::string_view(ascii.text()), std::string_view(file));
   } catch (const toml::parse_error& e) {
-    throw InputError(file + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column) +
-                     ": " + std::string(e.description()));
+    const auto& b = e.source().begin;
+    throw InputError(file + ":" + std::to_string(b.line) + ":" + std::to_string(ascii.original_column(b.line, b.column)) +
+                     ": " + printable_text(e.description()));
   }
   std::map<std::string, std::string> origins;
   for (const std::string& o : overrides) apply_override(root, o, origins);
-  const Reader r(root, file, origins);
+  const Reader r(root, file, ascii, origins);
   r.check_unknown(root, "");
 
   SceneDescription s;
@@ -195,11 +305,18 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
     const auto* a = n->as_array();
     if (!a || a->empty()) r.fail("meshes", n, "expected a non-empty array of mesh file paths");
     for (const toml::node& e : *a) {
-      const auto* str = e.as_string();
-      if (!str || str->get().empty()) r.fail("meshes", n, "every entry must be a non-empty path string");
-      const std::filesystem::path p = std::filesystem::path(str->get()).is_absolute() ? std::filesystem::path(str->get())
-                                                                                       : base / str->get();
-      if (!std::filesystem::is_regular_file(p)) r.fail("meshes", &e, "file not found: " + p.string());
+      if (!e.is_string() || e.as_string()->get().empty()) r.fail("meshes", n, "every entry must be a non-empty path string");
+      const std::string& entry = r.text("meshes", e);
+      const std::filesystem::path p = std::filesystem::path(entry).is_absolute() ? std::filesystem::path(entry) : base / entry;
+      // The error_code form: a path the system refuses (a component over 255 bytes: "File name
+      // too long") is the user's input, not an internal error.
+      std::error_code ec;
+      const std::filesystem::file_status status = std::filesystem::status(p, ec);
+      if (status.type() == std::filesystem::file_type::not_found)
+        r.fail("meshes", &e, "file not found: " + printable_text(p.string()));
+      if (ec) r.fail("meshes", &e, "cannot use the mesh path '" + printable_text(p.string()) + "': " + ec.message());
+      if (!std::filesystem::is_regular_file(status))
+        r.fail("meshes", &e, "not a regular file: " + printable_text(p.string()));
       s.meshes.push_back(p);
     }
   }
@@ -215,12 +332,13 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
   if (const toml::node* n = r.get("materials.assign")) {
     for (const auto& [k, v] : *n->as_table()) {
       const std::string key = "materials.assign." + std::string(k.str());
+      const std::string& material = r.text(key, v);
       try {
-        find_material(v.as_string()->get(), key);
+        find_material(material, key);
       } catch (const InputError& e) {
         r.fail(key, &v, e.what());
       }
-      s.material_assignment[std::string(k.str())] = v.as_string()->get();
+      s.material_assignment[std::string(k.str())] = material;
     }
   }
   // camera + image
@@ -262,7 +380,12 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
       } catch (const InputError& e) {
         r.fail("sun.time", r.get("sun.time"), e.what());
       }
-      const SpaResult res = sun_position_spa(in);
+      SpaResult res;
+      try {
+        res = sun_position_spa(in);  // its range errors name no file: say which key
+      } catch (const InputError& e) {
+        r.fail("sun.time", r.get("sun.time"), e.what());
+      }
       s.sun_altitude_deg = 90.0 - res.zenith_deg;
       s.sun_azimuth_deg = res.azimuth_deg;
       std::ostringstream src;

@@ -57,6 +57,10 @@
 // `materials.assign.wall=painted-wall`); the value is read as a TOML value, and as a plain string
 // when it is not one (`sky.model=cie-12`). Unknown keys (in the file or an override) are errors.
 // Errors throw InputError naming "file:line:column", the key and the value, or "--set key=value".
+// Text: UTF-8, with non-ASCII characters in strings and comments only (quote a key that holds
+// them: "façade" = ...), and no control characters in string values — toml++ 3.3.0 is only ever
+// given ASCII (io/toml_ascii.h says why). A mesh path the system refuses (a component over 255
+// bytes) is an InputError naming the key, like a missing file.
 #include <filesystem>
 #include <map>
 #include <optional>

@@ -11,6 +11,7 @@
 
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/utf8_text.h"
 
 namespace skyband::mesh_io {
 namespace {
@@ -92,7 +93,7 @@ PolygonSoup parse_ascii(const std::string& name, const std::string& bytes) {
   std::vector<std::string_view> tokens;
   auto where = [&](std::size_t line) { return name + ":" + std::to_string(line) + ": "; };
   auto expect = [&](std::size_t line, const char* what) {
-    throw InputError(where(line) + "expected " + what + ", found '" + std::string(tokens[0]) + "'");
+    throw InputError(where(line) + "expected " + what + ", found '" + printable_text(tokens[0]) + "'");
   };
   for_each_line(bytes, [&](std::size_t line, std::string_view text) {
     last_line = line;
@@ -186,6 +187,7 @@ PolygonSoup parse_stl(const std::string& name, const std::string& bytes) {
                        " bytes)");
     throw InputError(name + ": not an STL file (" + std::to_string(bytes.size()) + " bytes, no 'solid' at the start)");
   }
+  reject_nul_bytes(name, bytes, "the ascii STL text");
   PolygonSoup soup = parse_ascii(name, bytes);
   soup.notes.push_back("STL: " + std::to_string(soup.indices.size()) + " facet corners welded into " +
                        std::to_string(soup.vertices.size()) + " vertices (exactly equal positions merged)");

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include <netcdf.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/support/cli_runner.h"
@@ -382,4 +383,91 @@ BOOST_AUTO_TEST_CASE(generated_moments_and_the_sun_only_path) {
       {base + "--sun-only --sun-altitude 30 --out " + q(d / "bad.csv"), "--sun-only"},
       {base + "--date 2026-03-20 --zone UTC --times " + q(d / "times.csv") + " --out " + q(d / "bad.csv"), "--times"},
   }, d / "bad.csv");
+}
+
+// --hourly: the NetCDF-4 file holds one series per point and interval; summed over the intervals
+// (each 1 h) it gives the CSV's sums — exactly for the sun and the ground (the same terms), and for
+// the sky within 1 % (daylight coefficients on a coarse grid, normalised per hour on the open
+// horizontal face, against the time-integrated sky's quadrature). Time runs forward in UTC: the
+// first interval of Chicago (UTC−6) on June 1st ends at 07:00 UTC.
+BOOST_AUTO_TEST_CASE(hourly_netcdf) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_hourly");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\ntop,5,5,10,0,0,1\nsouthwall,5,0,5,0,-1,0\n";
+  const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+  const auto r = run_skyband("irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather " +
+                             q(chicago) + " --from 06-01 --to 06-07 --out " + q(d / "week.csv") + " --hourly " +
+                             q(d / "week.nc"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(!fs::exists(d / "week.nc.partial"));
+  int nc = -1;
+  BOOST_TEST_REQUIRE(nc_open((d / "week.nc").c_str(), NC_NOWRITE, &nc) == NC_NOERR);
+  int dim_point, dim_time;
+  std::size_t points = 0, times = 0;
+  BOOST_TEST_REQUIRE(nc_inq_dimid(nc, "point", &dim_point) == NC_NOERR);
+  BOOST_TEST_REQUIRE(nc_inq_dimid(nc, "time", &dim_time) == NC_NOERR);
+  nc_inq_dimlen(nc, dim_point, &points);
+  nc_inq_dimlen(nc, dim_time, &times);
+  BOOST_TEST(points == 2u);
+  BOOST_TEST(times == 7u * 24u);
+  int v_time, v_bounds;
+  BOOST_TEST_REQUIRE(nc_inq_varid(nc, "time", &v_time) == NC_NOERR);
+  BOOST_TEST_REQUIRE(nc_inq_varid(nc, "time_bounds", &v_bounds) == NC_NOERR);
+  std::vector<double> t(times), b(2 * times);
+  nc_get_var_double(nc, v_time, t.data());
+  nc_get_var_double(nc, v_bounds, b.data());
+  for (std::size_t k = 1; k < times; ++k) BOOST_TEST(t[k] - t[k - 1] == 1.0, tt::tolerance(1e-9));
+  // (whatever year the file's June comes from: hour 1 ends at 01:00 UTC−6 = 07:00 UTC)
+  BOOST_TEST(std::fmod(b[1], 24.0) == 7.0, tt::tolerance(1e-9));
+  const auto rows = read_csv(d / "week.csv");
+  const char* vars[3] = {"sky_W_m2", "sun_W_m2", "ground_W_m2"};
+  const char* cols[3] = {"sky_kWh_m2", "sun_kWh_m2", "ground_kWh_m2"};
+  for (int v = 0; v < 3; ++v) {
+    int id;
+    BOOST_TEST_REQUIRE(nc_inq_varid(nc, vars[v], &id) == NC_NOERR);
+    std::vector<float> x(points * times);
+    nc_get_var_float(nc, id, x.data());
+    for (std::size_t p = 0; p < points; ++p) {
+      double sum = 0;
+      for (std::size_t k = 0; k < times; ++k) sum += x[p * times + k];
+      const double expected = 1000 * num(rows[p], cols[v]);
+      BOOST_TEST(sum == expected, tt::tolerance(v == 0 ? 1e-2 : 1e-5));
+    }
+  }
+  nc_close(nc);
+}
+
+// Times files found by hand: `hours` had no upper bound (two rows of 1e308 summed to inf),
+// `sun_azimuth` no range (1e308 accepted), and the SPA's range errors named no file or line; a
+// NUL in a time cut the message short. Now: one line naming file:line and the value, exit 2.
+BOOST_AUTO_TEST_CASE(times_file_bounds_and_sun_errors_name_the_line) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_times_bounds");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n5,27,0\n";
+  std::ofstream(d / "huge.csv") << "sun_altitude,sun_azimuth,hours\n30,180,1e308\n30,180,1e308\n";
+  std::ofstream(d / "over.csv") << "sun_altitude,sun_azimuth,hours\n30,180,8784.5\n";
+  std::ofstream(d / "az.csv") << "sun_altitude,sun_azimuth\n30,180\n30,1e308\n";
+  std::ofstream(d / "year.csv") << "time\n2026-06-21T12:00:00Z\n9999-06-21T12:00:00Z\n";
+  std::ofstream(d / "nul.csv", std::ios::binary) << std::string("time\n2026-06-21T12:00\0:00Z\n", 27);
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                           q(d / "out.csv") + " --times ";
+  skyband::test::check_bad_input({
+      {base + q(d / "huge.csv"), "huge.csv:2: hours 1e+308 must be in [0, 8784]"},
+      {base + q(d / "over.csv"), "over.csv:2: hours 8784.5"},
+      {base + q(d / "az.csv"), "az.csv:3: sun_azimuth 1e+308 must be in [-360, 360]"},
+      {base + q(d / "year.csv") + " --lat 52 --lon 4", "year.csv:3: column 'time': value '9999-06-21T12:00:00Z': sun position: year = 9999"},
+      {base + q(d / "nul.csv") + " --lat 52 --lon 4", "nul.csv:2: column 'time': value '2026-06-21T12:00\\x00:00Z'"},
+  }, d / "out.csv");
+  // The bounds are inclusive and the azimuth is taken modulo 360 (as --sun-azimuth and the scene
+  // file do): a row of 8784 h at azimuth -90 gives the output of one at 270, bit for bit.
+  std::ofstream(d / "west_neg.csv") << "sun_altitude,sun_azimuth,hours\n30,-90,8784\n";
+  std::ofstream(d / "west_pos.csv") << "sun_altitude,sun_azimuth,hours\n30,270,8784\n";
+  const std::string ok = "irradiance --quiet --sun-only --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --times ";
+  const auto neg = run_skyband(ok + q(d / "west_neg.csv") + " --out " + q(d / "neg.csv"));
+  const auto pos = run_skyband(ok + q(d / "west_pos.csv") + " --out " + q(d / "pos.csv"));
+  BOOST_TEST_REQUIRE(neg.exit_code == 0, neg.err);
+  BOOST_TEST_REQUIRE(pos.exit_code == 0, pos.err);
+  BOOST_TEST(skyband::test::slurp(d / "neg.csv") == skyband::test::slurp(d / "pos.csv"));
+  // The top face of the cube sees the sun for all 8784 h (closed form: nothing above it).
+  BOOST_TEST(num(read_csv(d / "neg.csv")[0], "sun_hours") == 8784.0);
 }

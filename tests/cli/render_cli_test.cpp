@@ -3,6 +3,8 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,4 +92,45 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_the_key) {
     BOOST_TEST(r.err.find(c.expect) != std::string::npos, c.args << " → " << r.err);
   }
   BOOST_TEST(!fs::exists(work_dir() / "bad.exr"));  // nothing half-written
+}
+
+// The scene inputs fuzzing found (../shared/data/fuzz-found/README.md): exit 2 with one line
+// naming the file and what is wrong — not exit 3 "internal error" (a filesystem_error on a
+// 300-byte file name), not toml++'s undefined behaviour on 'Җ' (U+0496) or on printing
+// `[0.01]` — at once (10 s asserted against a hang), and no image written.
+BOOST_AUTO_TEST_CASE(fuzz_found_scene_inputs_exit_2_naming_file_and_key) {
+  const fs::path found = fs::path(SKYBAND_SHARED_DATA) / "fuzz-found";
+  const fs::path out = work_dir() / "fuzz_found.exr";
+  const std::string to = " --quiet --out " + test::shell_quote(out);
+  // scene_override_unicode.txt: the arguments, one a line after an empty one ("--set", "sky.model=Җ").
+  std::string args;
+  {
+    std::istringstream lines(test::slurp(found / "scene_override_unicode.txt"));
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) {
+        args += ' ';  // built with += : GCC 12 warns falsely (-Wrestrict) on " " + string&&
+        args += test::shell_quote(line);
+      }
+  }
+  BOOST_TEST(args == " '--set' 'sky.model=\xD2\x96'");
+  struct Case {
+    std::string args, expect;
+  };
+  const Case cases[] = {
+      {"render --scene " + test::shell_quote(found / "scene_unicode_2bytes.toml") + to, "scene_unicode_2bytes.toml:1:1: character"},
+      {"render --scene " + test::shell_quote(found / "scene_array_small_float_in_error_message.toml") + to,
+       "scene_array_small_float_in_error_message.toml:1:10: meshes = [0.01]: every entry must be a non-empty path string"},
+      {"render --scene " + test::shell_quote(found / "scene_mesh_name_too_long.toml") + to, "File name too long"},
+      {"render --scene '" + kScene + "'" + to + args, "--set sky.model=\xD2\x96: sky.model '\xD2\x96': unknown sky model"},
+  };
+  for (const Case& c : cases) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const CliResult r = run(c.args);
+    BOOST_TEST(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 10.0);
+    BOOST_TEST(r.exit_code == 2, c.args << " → exit " << r.exit_code << ": " << r.err);
+    BOOST_TEST(r.err.starts_with("skyband: error: "), r.err);
+    BOOST_TEST(r.err.find(c.expect) != std::string::npos, c.args << " → " << r.err);
+    BOOST_TEST(std::count(r.err.begin(), r.err.end(), '\n') == 1, r.err);
+  }
+  BOOST_TEST(!fs::exists(out));
 }

@@ -1,9 +1,12 @@
 #define BOOST_TEST_MODULE svf_cli
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "cli/support/cli_runner.h"
 
@@ -155,4 +158,80 @@ BOOST_AUTO_TEST_CASE(horizon_profiles) {
     BOOST_TEST(!fs::exists(d / "h2.csv"));
     BOOST_TEST(!fs::exists(d / "o2.csv"));
   }
+}
+
+namespace {
+
+const fs::path kFuzzFound = fs::path(SKYBAND_SHARED_DATA) / "fuzz-found";
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::size_t count_of(const std::string& s, char c) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), c)); }
+
+}  // namespace
+
+// The mesh files fuzzing found (../shared/data/fuzz-found/README.md) through the CLI: before,
+// 4–55 s and gigabytes (the OFF files through OpenMesh, the PLY files looping over 4·10⁹ empty
+// entries), and exit 0 after a caught bad_alloc. Now each ends at once (< 2 s expected, 10 s
+// asserted against a hang), with exit 0 and the output, or exit 2 and one line naming the file.
+// Expected exits: the files' faces are valid (see tests/io/mesh_reader_test.cpp), except
+// ply_empty_element.ply, which has neither vertices nor faces.
+BOOST_AUTO_TEST_CASE(fuzz_found_meshes_end_at_once) {
+  const fs::path d = skyband::test::test_folder("svf_cli_fuzz_found");
+  std::ofstream(d / "pts.csv") << "x,y,z\n0.2,0.2,5\n";
+  const std::vector<std::pair<std::string, int>> cases{
+      {"off_comment_after_header.off", 0}, {"off_face_extra_value_minus1.off", 0}, {"off_face_loop_oom.off", 0},
+      {"ply_empty_element.ply", 2},        {"ply_empty_element_huge_count.ply", 0}, {"ply_three_empty_elements.ply", 0},
+  };
+  for (const auto& [file, exit_code] : cases) {
+    BOOST_TEST_CONTEXT(file) {
+      const fs::path out = d / (file + ".csv");
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto r = run_skyband("svf --quiet --mesh " + q(kFuzzFound / file) + " --points " + q(d / "pts.csv") + " --out " + q(out));
+      BOOST_TEST(seconds_since(t0) < 10.0);
+      BOOST_TEST(r.exit_code == exit_code, r.err);
+      if (exit_code == 0) {
+        BOOST_TEST(slurp(out).starts_with("x,y,z,svf,sky_exposure\n0.2,0.2,5,"), slurp(out));
+      } else {
+        BOOST_TEST(r.err.starts_with("skyband: error: " + (kFuzzFound / file).string() + ": "), r.err);
+        BOOST_TEST(r.err.find("neither a vertex nor a face element") != std::string::npos, r.err);
+        BOOST_TEST(count_of(r.err, '\n') == 1u, r.err);
+        BOOST_TEST(!fs::exists(out));
+      }
+    }
+  }
+}
+
+// The points files fuzzing found: a pass-through first header cell that begins with U+FEFF
+// (after the file's own byte-order mark, or after a blank line) is written quoted, so it keeps
+// its name when the output is read back (expected bytes: tests/io/points_csv_test.cpp).
+BOOST_AUTO_TEST_CASE(fuzz_found_points_keep_their_first_column_name) {
+  const fs::path d = skyband::test::test_folder("svf_cli_fuzz_found_points");
+  write_cube(d / "cube.obj");
+  for (const char* file : {"points_roundtrip_double_bom.csv", "points_roundtrip_bom_after_blank_line.csv"}) {
+    const fs::path out = d / (std::string(file) + ".out.csv");
+    const auto r = run_skyband("svf --quiet --mesh " + q(d / "cube.obj") + " --points " + q(kFuzzFound / file) + " --out " + q(out));
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+    BOOST_TEST(slurp(out).starts_with("\"\xEF\xBB\xBFid\",x,y,z,svf,sky_exposure\na,0,0,1,"), file);
+  }
+}
+
+// Whatever a message quotes, the CLI prints one line: a line break inside a quoted cell and a NUL
+// byte are escaped, and the text after the NUL is there (what() is a C string: the reader escapes
+// the value before it goes into the message).
+BOOST_AUTO_TEST_CASE(messages_are_one_whole_line) {
+  const fs::path d = skyband::test::test_folder("svf_cli_message_lines");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "lf.csv") << "x,y,z\n1,\"2\n5\",3\n";
+  std::ofstream(d / "nul.csv", std::ios::binary) << std::string("x,y,z\n1,2\0x,3\n", 14);
+  const std::string base = "svf --quiet --mesh " + q(d / "cube.obj") + " --out " + q(d / "out.csv") + " --points ";
+  const auto lf = run_skyband(base + q(d / "lf.csv"));
+  BOOST_TEST(lf.exit_code == 2);
+  BOOST_TEST(lf.err == "skyband: error: " + (d / "lf.csv").string() + ":2: column 'y': value '2\\n5' is not a number\n");
+  const auto nul = run_skyband(base + q(d / "nul.csv"));
+  BOOST_TEST(nul.exit_code == 2);
+  BOOST_TEST(nul.err == "skyband: error: " + (d / "nul.csv").string() + ":2: column 'y': value '2\\x00x' is not a number\n");
+  BOOST_TEST(!fs::exists(d / "out.csv"));
 }

@@ -134,3 +134,49 @@ BOOST_AUTO_TEST_CASE(write_rejects_bad_arguments_without_touching_the_target) {
   BOOST_TEST(!fs::exists(out));
   BOOST_CHECK_THROW(write_points_csv(d.path / "no_folder" / "out.csv", t, {"svf"}, {{0.5}}), InputError);
 }
+
+// The fuzzing findings (../shared/data/fuzz-found/README.md): a first header cell that itself
+// begins with U+FEFF — after the file's own byte-order mark, or after a blank line — was written
+// at byte 0 and eaten as a byte-order mark on read-back. The expected header comes from the
+// files' bytes: "EF BB BF EF BB BF id,x,y,z" (one mark stripped at byte 0, the second is data) and
+// "CR LF EF BB BF id,x,y,z" (the mark is not at byte 0: data; the blank line is skipped).
+BOOST_AUTO_TEST_CASE(fuzz_found_bom_headers_round_trip_exactly) {
+  TempDir d;
+  const fs::path found = fs::path(SKYBAND_SHARED_DATA) / "fuzz-found";
+  for (const char* name : {"points_roundtrip_double_bom.csv", "points_roundtrip_bom_after_blank_line.csv"}) {
+    BOOST_TEST_CONTEXT(name) {
+      const PointsTable in = read_points_csv(found / name);
+      BOOST_TEST(in.header == (std::vector<std::string>{"\xEF\xBB\xBFid", "x", "y", "z"}));
+      BOOST_REQUIRE_EQUAL(in.rows.size(), 1u);
+      const fs::path out = d.path / "out.csv", again = d.path / "again.csv";
+      write_points_csv(out, in, {"svf"}, {{0.5}});
+      // The cell at byte 0 is quoted, so its U+FEFF is not a byte-order mark.
+      BOOST_TEST(slurp(out) == "\"\xEF\xBB\xBFid\",x,y,z,svf\na,0,0,1,0.5\n");
+      const PointsTable back = read_points_csv(out);
+      BOOST_TEST(back.header == (std::vector<std::string>{"\xEF\xBB\xBFid", "x", "y", "z", "svf"}));
+      BOOST_TEST(back.rows[0] == (std::vector<std::string>{"a", "0", "0", "1", "0.5"}));
+      BOOST_TEST(back.points[0].position == in.points[0].position);
+      // Written again without the extra column: the same bytes as the first write's first four columns.
+      PointsTable trimmed = back;
+      trimmed.header.pop_back();
+      for (auto& row : trimmed.rows) row.pop_back();
+      write_points_csv(again, trimmed, {"svf"}, {{0.5}});
+      BOOST_TEST(slurp(again) == slurp(out));
+    }
+  }
+  // A cell beginning with U+FEFF anywhere but byte 0 needs no quotes; a plain first cell none.
+  const PointsTable t = read_points_csv(write(d, "later.csv", "x,y,z,\xEF\xBB\xBFnote\n1,2,3,\xEF\xBB\xBF\n"));
+  write_points_csv(d.path / "later_out.csv", t, {}, {});
+  BOOST_TEST(slurp(d.path / "later_out.csv") == "x,y,z,\xEF\xBB\xBFnote\n1,2,3,\xEF\xBB\xBF\n");
+}
+
+// Values quoted in messages are printable: a NUL or a line break inside a cell is escaped, so
+// the message is whole (what() is a C string) and one line.
+BOOST_AUTO_TEST_CASE(messages_escape_control_characters_in_cells) {
+  TempDir d;
+  using namespace std::string_literals;
+  const std::string nul = error_of(write(d, "nul.csv", "x,y,z\n1,2\0x,3\n"s));
+  BOOST_TEST(contains(nul, "nul.csv:2: column 'y': value '2\\x00x' is not a number"), nul);
+  const std::string lf = error_of(write(d, "lf.csv", "x,y,z\n1,\"2\n5\",3\n"));
+  BOOST_TEST(contains(lf, "lf.csv:2: column 'y': value '2\\n5' is not a number"), lf);
+}

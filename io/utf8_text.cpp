@@ -1,0 +1,96 @@
+// Strict UTF-8 decoding and printable escapes (utf8_text.h).
+#include "io/utf8_text.h"
+
+#include <cstdio>
+
+namespace skyband {
+namespace {
+
+bool is_escaped_code_point(char32_t c) {
+  return c < 0x20 || c == 0x7F || (c >= 0x80 && c <= 0x9F) || c == 0x2028 || c == 0x2029;
+}
+
+}  // namespace
+
+std::size_t utf8_sequence_length(std::string_view text, std::size_t i, char32_t* code_point) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char b0 = byte(i);
+  if (b0 < 0x80) {
+    *code_point = b0;
+    return 1;
+  }
+  // Unicode table 3-7 "Well-Formed UTF-8 Byte Sequences": the allowed range of the second byte
+  // depends on the first (this excludes overlong forms, surrogates and code points > U+10FFFF).
+  std::size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;
+  char32_t c = 0;
+  if (b0 >= 0xC2 && b0 <= 0xDF) n = 2, c = b0 & 0x1Fu;
+  else if (b0 == 0xE0) n = 3, lo = 0xA0, c = b0 & 0x0Fu;
+  else if (b0 >= 0xE1 && b0 <= 0xEC) n = 3, c = b0 & 0x0Fu;
+  else if (b0 == 0xED) n = 3, hi = 0x9F, c = b0 & 0x0Fu;
+  else if (b0 >= 0xEE && b0 <= 0xEF) n = 3, c = b0 & 0x0Fu;
+  else if (b0 == 0xF0) n = 4, lo = 0x90, c = b0 & 0x07u;
+  else if (b0 >= 0xF1 && b0 <= 0xF3) n = 4, c = b0 & 0x07u;
+  else if (b0 == 0xF4) n = 4, hi = 0x8F, c = b0 & 0x07u;
+  else return 0;
+  if (i + n > text.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    const unsigned char b = byte(i + k);
+    if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return 0;
+    c = (c << 6) | (b & 0x3Fu);
+  }
+  *code_point = c;
+  return n;
+}
+
+std::size_t first_invalid_utf8(std::string_view text) {
+  char32_t c;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_sequence_length(text, i, &c);
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::string_view::npos;
+}
+
+std::string printable_text(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  char buf[16];
+  char32_t c;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_sequence_length(text, i, &c);
+    if (n == 0) {
+      std::snprintf(buf, sizeof buf, "\\x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[i])));
+      out += buf;
+      ++i;
+      continue;
+    }
+    if (!is_escaped_code_point(c)) {
+      out.append(text.substr(i, n));
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else {
+      std::snprintf(buf, sizeof buf, c < 0x80 ? "\\x%02X" : "\\u%04X", static_cast<unsigned>(c));
+      out += buf;
+    }
+    i += n;
+  }
+  return out;
+}
+
+bool is_printable_text(std::string_view text) {
+  char32_t c;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_sequence_length(text, i, &c);
+    if (n == 0 || is_escaped_code_point(c)) return false;
+    i += n;
+  }
+  return true;
+}
+
+}  // namespace skyband
