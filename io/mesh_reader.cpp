@@ -17,6 +17,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/polygon_triangulation.h"
+#include "io/cityjson_reader.h"
 #include "io/utf8_text.h"
 
 namespace skyband {
@@ -205,7 +206,7 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
 }  // namespace
 
 const std::vector<std::string>& supported_mesh_extensions() {
-  static const std::vector<std::string> extensions{".obj", ".off", ".ply", ".stl"};
+  static const std::vector<std::string> extensions{".obj", ".off", ".ply", ".stl", ".json", ".jsonl"};
   return extensions;
 }
 
@@ -222,8 +223,36 @@ std::string MeshReadReport::summary() const {
   return s.str();
 }
 
+// CityJSON through its own reader (io/cityjson_reader.h), reported in the mesh readers' terms.
+TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* report) {
+  CityModelReport c;
+  TriangleSoup soup = read_cityjson(file, {}, &c);
+  if (report) {
+    MeshReadReport r;
+    r.file = c.file;
+    r.format = c.format;
+    r.reader = "skyband CityJSON reader (each object at its highest LoD)";
+    r.vertices_in_file = c.vertices;
+    r.faces_in_file = r.faces_read = c.surfaces;
+    r.triangles = c.triangles;
+    r.polygons_triangulated = c.surfaces;
+    r.notes.push_back(std::to_string(c.objects_with_geometry) + " of " + std::to_string(c.objects) + " city objects read (" +
+                      std::to_string(c.skipped_objects) + " skipped), " + std::to_string(c.surfaces_with_holes) +
+                      " surfaces with holes");
+    std::string lods;
+    for (const auto& [lod, n] : c.lods_used) lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
+    if (!lods.empty()) r.notes.push_back(lods);
+    r.notes.push_back(c.crs.empty() ? "no referenceSystem" : "referenceSystem " + c.crs);
+    r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
+    r.defects = analyse_defects(soup);
+    *report = std::move(r);
+  }
+  return soup;
+}
+
 TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report) {
   const std::string name = file.string();
+  if (is_cityjson_path(file)) return read_city_model(file, report);
   const std::string extension = lower(file.extension().string());
   const auto& supported = supported_mesh_extensions();
   if (std::find(supported.begin(), supported.end(), extension) == supported.end()) {

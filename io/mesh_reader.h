@@ -39,6 +39,8 @@
 //    other properties and elements are skipped.
 //  - STL: ascii and binary (binary when the size is 84 + 50·count, else ascii if it starts with
 //    `solid`). STL has no connectivity: exactly equal positions are welded (the report says so).
+//  - CityJSON (`.json`, `.city.json`) and CityJSONSeq (`.jsonl`): io/cityjson_reader.h (each
+//    object at its highest LoD; material names = semantic surface types, else object types).
 //  Faces with fewer than 3 vertices are input errors. A file with no faces is an "empty mesh"
 //  error. Unknown extensions are errors that list the supported ones.
 #include <cstddef>
@@ -71,7 +73,7 @@ struct MeshReadReport {
 // Reads one mesh file. Throws InputError on unreadable, malformed or empty input.
 TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr);
 
-// The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl".
+// The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl", ".json", ".jsonl".
 const std::vector<std::string>& supported_mesh_extensions();
 
 namespace mesh_io {
