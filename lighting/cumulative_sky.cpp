@@ -18,19 +18,6 @@ namespace {
 
 constexpr int kNodes = kCumulativeSkyCells + 1;
 
-// Unit direction of the point p of the unit disk (inverse stereographic projection), the rim
-// lifted just above the horizon (as sky_radiance_grid.cpp).
-Vec3 disk_direction(double px, double py) {
-  constexpr double kRimRadius = 1.0 - 1e-6;
-  const double r2 = px * px + py * py;
-  if (r2 > kRimRadius * kRimRadius) {
-    const double k = kRimRadius / std::sqrt(r2);
-    px *= k;
-    py *= k;
-  }
-  const double q = px * px + py * py;
-  return Vec3(2.0 * px, 2.0 * py, 1.0 - q) / (1.0 + q);
-}
 
 // e^x, by the table of fast_exp.h where x ≤ 0 (b ≤ 0 always; d < 0 in all but odd overcast skies).
 double exp_of(double x) { return x <= 0 ? exp_neg(-x) : std::exp(x); }
@@ -91,11 +78,11 @@ CumulativeSky cumulative_perez_sky(std::span<const WeatherHour> hours, int threa
         const double px = -1.0 + ix * step, py = -1.0 + iy * step;
         const double r = std::hypot(px, py);
         double w, lx;
-        sum_at(disk_direction(px, py), w, lx);
+        sum_at(sky_grid_disk_direction(px, py), w, lx);
         if (r > 1.0) {
           const double k = (2.0 - r) / r;
           double wi, lxi;
-          sum_at(disk_direction(px * k, py * k), wi, lxi);
+          sum_at(sky_grid_disk_direction(px * k, py * k), wi, lxi);
           w = std::max(0.0, 2 * w - wi);
           lx = std::max(0.0, 2 * lx - lxi);
         }

@@ -7,6 +7,7 @@
 #include "geometry/sample_lines.h"
 #include "geometry/sky_integral.h"
 #include "geometry/visibility_cache.h"
+#include "lighting/sky_radiance_grid.h"
 
 namespace skyband {
 
@@ -14,19 +15,6 @@ namespace {
 
 constexpr int kCells = kDaylightCoefficientCells, kNodes1 = kCells + 1;
 
-// Unit direction of the point p of the unit disk, the rim lifted just above the horizon (as
-// sky_radiance_grid.cpp).
-Vec3 disk_direction(double px, double py) {
-  constexpr double kRimRadius = 1.0 - 1e-6;
-  const double r2 = px * px + py * py;
-  if (r2 > kRimRadius * kRimRadius) {
-    const double k = kRimRadius / std::sqrt(r2);
-    px *= k;
-    py *= k;
-  }
-  const double q = px * px + py * py;
-  return Vec3(2.0 * px, 2.0 * py, 1.0 - q) / (1.0 + q);
-}
 
 // Σ over the point's lines of w_b ∫ φ_j sin²α dα, scattered into the nodes' coefficients.
 void scatter_lines(const PointVisibilityView& v, std::span<float> out) {
@@ -72,10 +60,10 @@ const std::vector<DaylightNode>& daylight_nodes() {
       for (int ix = 0; ix < kNodes1; ++ix) {
         const double px = -1.0 + ix * step, py = -1.0 + iy * step, r = std::hypot(px, py);
         DaylightNode& d = n[static_cast<std::size_t>(iy) * kNodes1 + static_cast<std::size_t>(ix)];
-        d.da = disk_direction(px, py);
+        d.da = sky_grid_disk_direction(px, py);
         if (r > 1.0) {  // 2·L(rim) − L(mirror point at radius 2 − r)
           const double k = (2.0 - r) / r;
-          d.db = disk_direction(px * k, py * k);
+          d.db = sky_grid_disk_direction(px * k, py * k);
           d.a = 2;
           d.b = -1;
         } else {

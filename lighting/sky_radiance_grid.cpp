@@ -14,10 +14,9 @@ namespace {
 
 constexpr int kNodes = SkyRadianceGrid::kCells + 1;
 
-// Unit direction of the point p of the unit disk (inverse stereographic projection); the rim
-// itself is lifted just above the horizon (the sky models are 0 at exactly ω_z = 0 but
-// continuous from above).
-Vec3 disk_direction(double px, double py) {
+}  // namespace
+
+Vec3 sky_grid_disk_direction(double px, double py) {
   constexpr double kRimRadius = 1.0 - 1e-6;
   const double r2 = px * px + py * py;
   if (r2 > kRimRadius * kRimRadius) {
@@ -28,8 +27,6 @@ Vec3 disk_direction(double px, double py) {
   const double q = px * px + py * py;
   return Vec3(2.0 * px, 2.0 * py, 1.0 - q) / (1.0 + q);
 }
-
-}  // namespace
 
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
   const double len = dir.norm();
@@ -53,14 +50,14 @@ SkyRadianceGrid::SkyRadianceGrid(const std::function<void(const Vec3&, Spectrum&
         const double px = -1.0 + ix * h, py = -1.0 + iy * h;
         const double r = std::sqrt(px * px + py * py);
         if (r <= 1.0) {
-          sky(disk_direction(px, py), l);
+          sky(sky_grid_disk_direction(px, py), l);
         } else {
           // Outside the disk: the linear extension across the rim, 2·L(rim) − L(mirror point at
           // radius 2 − r), so that cells cut by the horizon interpolate a C¹ function (second-
           // order error) instead of a clamped one (first order). Clamped at 0: radiance.
-          sky(disk_direction(px, py), l);
+          sky(sky_grid_disk_direction(px, py), l);
           const double k = (2.0 - r) / r;
-          sky(disk_direction(px * k, py * k), inner);
+          sky(sky_grid_disk_direction(px * k, py * k), inner);
           for (int i = 0; i < kSpectrumSamples; ++i) l[i] = std::max(0.0, 2.0 * l[i] - inner[i]);
         }
         float* d = &data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kSpectrumSamples];
@@ -122,10 +119,10 @@ ProjectedSkyGrid ProjectedSkyGrid::sample(int channels, const std::function<void
       for (int ix = 0; ix < kNodes; ++ix) {
         const double px = -1.0 + ix * h, py = -1.0 + iy * h;
         const double r = std::sqrt(px * px + py * py);
-        f(disk_direction(px, py), l);
+        f(sky_grid_disk_direction(px, py), l);
         if (r > 1.0) {  // the linear extension across the rim (SkyRadianceGrid), clamped at 0
           const double k = (2.0 - r) / r;
-          f(disk_direction(px * k, py * k), inner);
+          f(sky_grid_disk_direction(px * k, py * k), inner);
           for (std::size_t c = 0; c < kC; ++c) l[c] = std::max(0.0, 2.0 * l[c] - inner[c]);
         }
         float* d = &g.data_[(static_cast<std::size_t>(iy) * kNodes + static_cast<std::size_t>(ix)) * kC];

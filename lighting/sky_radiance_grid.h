@@ -32,6 +32,11 @@ class ProjectedSkyGrid;
 // Cells per axis of the stereographic grids.
 inline constexpr int kSkyGridCells = 400;
 
+// Unit direction of the point p of the unit disk (the inverse stereographic projection); points
+// on or beyond the rim are pulled in to just inside it, so the direction lies just above the
+// horizon (the sky models are 0 at exactly ω_z = 0 but continuous from above).
+Vec3 sky_grid_disk_direction(double px, double py);
+
 // Grid coordinates of a direction: false at or below the horizon; else cell (ix, iy) and the
 // fractions (fx, fy) ∈ [0, 1] within it.
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy);
