@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages skyband builds against, only those that are missing.
-# Why each one is in the README. Usage: scripts/install-deps.sh [--bench]
-# (--bench: also Embree, which only the Monte Carlo baseline benchmark uses).
+# Why each one is in the README. Usage: scripts/install-deps.sh [--bench] [--fuzz]
+# (--bench: also Embree, which only the Monte Carlo baseline benchmark uses;
+#  --fuzz: also clang with libFuzzer and its sanitizer runtimes, for scripts/fuzz.sh — about
+#  350 MB, so not in the default list. scripts/test-sanitized.sh needs nothing extra: GCC's
+#  libasan/libubsan come with build-essential.)
 set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
@@ -18,7 +21,15 @@ PACKAGES=(
   libhowardhinnant-date-dev tzdata        # named time zones (IANA tz database) for moments
   libnetcdf-dev                           # hourly results (NetCDF-4, CF conventions)
 )
-if [ "${1:-}" = "--bench" ]; then PACKAGES+=(libembree-dev); fi   # bench_sky_vs_monte_carlo's baseline
+for arg in "$@"; do
+  case "$arg" in
+    --bench) PACKAGES+=(libembree-dev) ;;                # bench_sky_vs_monte_carlo's baseline
+    --fuzz) PACKAGES+=(clang libclang-rt-dev llvm) ;;    # clang++, libFuzzer + ASan/UBSan runtimes
+                                                         # (not pulled in without recommends),
+                                                         # llvm-symbolizer for readable stacks
+    *) echo "install-deps: unknown option '$arg' (options: --bench, --fuzz)" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
