@@ -15,7 +15,9 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <typeinfo>
+#include <vector>
 
 #include <cxxabi.h>
 #include <unistd.h>
@@ -26,9 +28,21 @@ namespace skyband::fuzz {
 
 // A per-process file in the temporary folder ($TMPDIR), overwritten by every run:
 // skyband-fuzz-<pid>-<tag><ext>. The extension matters: read_mesh picks the format from it.
+// Removed when the process exits normally (libFuzzer exits at the end of a run; after a crash
+// the file stays, like the crash's own reproducer).
 inline std::filesystem::path temp_path(std::string_view tag, std::string_view ext) {
-  return std::filesystem::temp_directory_path() /
-         ("skyband-fuzz-" + std::to_string(::getpid()) + "-" + std::string(tag) + std::string(ext));
+  struct Registry {
+    std::vector<std::filesystem::path> paths;
+    ~Registry() {
+      std::error_code ignored;
+      for (const auto& p : paths) std::filesystem::remove(p, ignored);
+    }
+  };
+  static Registry created;
+  std::filesystem::path p = std::filesystem::temp_directory_path() /
+                            ("skyband-fuzz-" + std::to_string(::getpid()) + "-" + std::string(tag) + std::string(ext));
+  created.paths.push_back(p);
+  return p;
 }
 
 // Writes the input verbatim (binary) to `path`, replacing what was there.

@@ -110,7 +110,7 @@ candidate_seeds() {
 }
 
 # What a libFuzzer log reports, in a few words.
-classify() {
+classify_raw() {
   local log=$1
   if grep -q "skyband-fuzz: FINDING" "$log"; then grep -m1 "skyband-fuzz: FINDING" "$log" | sed 's/^skyband-fuzz: FINDING: //' | cut -c1-300
   elif grep -q "ERROR: libFuzzer: timeout" "$log"; then echo "timeout (> 10 s)"
@@ -124,6 +124,8 @@ classify() {
   else echo "libFuzzer exit status $2 (see the log)"
   fi
 }
+
+classify() { classify_raw "$@" | tr '|' '/'; }  # '|' separates the summary's columns
 
 # The first stack frame in skyband's own code (or the first frame at all), for the summary.
 where_in_code() {
@@ -185,20 +187,22 @@ for target in "${TARGETS[@]}"; do
   rc=$?
   set -e
   new=$(comm -13 <(echo "$before") <(find "$findings" -type f | sort) | sed '/^$/d')
-  if [ $rc -ne 0 ] || [ -n "$new" ]; then
-    if [ -z "$new" ]; then
-      FINDINGS+=("$target | fuzzing: $(classify "$log" $rc) | $(where_in_code "$log") | (no reproducer written) | log $log")
-    else
-      while IFS= read -r a; do
-        FINDINGS+=("$target | fuzzing: $(basename "$a" | cut -d- -f1) | see log | $a | log $log")
-      done <<< "$new"
-      if [ $rc -ne 0 ]; then
-        # Not fork mode: one finding, described from the log.
-        last=${#FINDINGS[@]}
-        FINDINGS[$((last - 1))]="$target | fuzzing: $(classify "$log" $rc) | $(where_in_code "$log") | $(echo "$new" | tail -1) | log $log"
-      fi
-    fi
+  if [ $rc -ne 0 ] && [ -z "$new" ]; then
+    FINDINGS+=("$target | fuzzing: $(classify "$log" $rc) | $(where_in_code "$log") | (no reproducer written) | log $log")
   fi
+  # Each reproducer runs once more on its own, so that every finding (also in fork mode, where
+  # the parent's log holds no stacks) is described from its own log.
+  while IFS= read -r a; do
+    [ -n "$a" ] || continue
+    alog=$FUZZ_DIR/logs/$target/$(basename "$a").log
+    set +e
+    "$exe" "${LIBFUZZER_LIMITS[@]}" -runs=1 "$a" > "$alog" 2>&1
+    arc=$?
+    set -e
+    what=$(classify "$alog" $arc)
+    [ $arc -ne 0 ] || what="$(basename "$a" | cut -d- -f1) (does not reproduce on its own)"
+    FINDINGS+=("$target | fuzzing: $what | $(where_in_code "$alog") | $a | log $alog")
+  done <<< "$new"
   grep -E "^stat::number_of_executed_units|^#[0-9]+.*DONE" "$log" | tail -1 | sed "s/^/fuzz.sh: $target: /" || true
 done
 
@@ -209,5 +213,7 @@ if [ ${#FINDINGS[@]} -eq 0 ]; then
 fi
 echo "fuzz.sh: ${#FINDINGS[@]} finding(s): target | what | where | reproducer | log"
 printf '  %s\n' "${FINDINGS[@]}"
+echo "fuzz.sh: distinct (count | target | what | where):"
+printf '%s\n' "${FINDINGS[@]}" | cut -d'|' -f1-3 | sed -E 's/ *$//' | sort | uniq -c | sed 's/^/  /'
 echo "Reproduce: $FUZZ_DIR/fuzz_<target> <reproducer>"
 exit 1

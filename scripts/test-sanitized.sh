@@ -7,7 +7,8 @@
 # Environment:
 #   SKYBAND_SANITIZE_BUILD_DIR  build folder (default build-asan)
 #   SKYBAND_SANITIZE_JOBS       build and ctest parallelism (default 2: the machine is shared)
-#   SKYBAND_FP_TRAPS            default 1; 0 runs without floating-point traps
+#   SKYBAND_FP_TRAPS            default 1 (FE_INVALID + FE_DIVBYZERO); invalid or divbyzero: one
+#                               alone; 0: no floating-point traps (tests/fp_traps.cpp)
 #   CC, CXX                     compiler at the first configure (default the system's, GCC)
 # Any sanitizer report, trap or leak fails the test that caused it; ASan prints the stack.
 # -O1 (not -O0): ASan's recommendation, and several times faster on the CGAL-heavy tests.
