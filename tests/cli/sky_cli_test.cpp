@@ -184,9 +184,10 @@ BOOST_AUTO_TEST_CASE(fisheye_exr_and_png_appear) {
 // input: exit 2 naming --out and the reason, not exit 3 "internal error" (a filesystem_error, the
 // same finding as a scene's mesh path, ../shared/data/fuzz-found/README.md).
 BOOST_AUTO_TEST_CASE(out_folder_name_too_long_exits_2) {
-  const std::string out = "/tmp/" + std::string(300, 'a') + "/sky.exr";
+  const std::string folder = skyband::test::test_folder("sky_cli_long_out").string();
+  const std::string out = folder + "/" + std::string(300, 'a') + "/sky.exr";
   const RunResult r = run("--sun-altitude 30 --out '" + out + "'");
   BOOST_TEST(r.exit_code == 2, r.err);
-  BOOST_TEST(r.err.starts_with("skyband: error: --out '/tmp/aaaa"), r.err);
+  BOOST_TEST(r.err.starts_with("skyband: error: --out '" + folder + "/aaaa"), r.err);
   BOOST_TEST(r.err.find("cannot be used: File name too long") != std::string::npos, r.err);
 }
