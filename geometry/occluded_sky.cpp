@@ -301,8 +301,10 @@ void OccludedSky::raise_in_segment(int g, std::uint32_t hi, double ta, double tb
         u1 = s1, w1x = e1x, w1y = e1y, p1 = q.g1;
       }
       const double c1 = value(hi, w1x, w1y);
-      raise_.push_back(Overlap{u0, w0x, w0y, u1, w1x, w1y, s1, c0 - p0, c1 - p1});
-      changed = changed || c0 - p0 > 0 || c1 - p1 > 0;
+      // hi − B₁ at both ends; 0 where both are the same circle (the zenith: ∞ − ∞ would be NaN).
+      const double e0 = hi == q.top ? 0.0 : c0 - p0, e1 = hi == q.top ? 0.0 : c1 - p1;
+      raise_.push_back(Overlap{u0, w0x, w0y, u1, w1x, w1y, s1, e0, e1});
+      changed = changed || e0 > 0 || e1 > 0;
       u0 = u1, w0x = w1x, w0y = w1y, c0 = c1;
     }
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace skyband {
 
@@ -141,11 +142,13 @@ namespace {
 // Slab test; returns false when the box cannot hold a hit in [t0, t1].
 bool hit_box(const Aabb& b, const Vec3& o, const Vec3& inv_d, double t0, double t1) {
   for (int a = 0; a < 3; ++a) {
+    if (std::isinf(inv_d[a])) {  // the ray is parallel to the slab: inside it or never in it
+      if (o[a] < b.lo[a] || o[a] > b.hi[a]) return false;
+      continue;
+    }
     double tn = (b.lo[a] - o[a]) * inv_d[a];
     double tf = (b.hi[a] - o[a]) * inv_d[a];
     if (tn > tf) std::swap(tn, tf);
-    if (std::isnan(tn)) tn = -1e300;  // 0·inf when the origin lies on a slab plane
-    if (std::isnan(tf)) tf = 1e300;
     t0 = std::max(t0, tn);
     t1 = std::min(t1, tf * (1 + 4e-16));  // conservative widening
     if (t0 > t1) return false;
@@ -197,7 +200,10 @@ std::optional<RayHit> Scene::intersect(const Ray& ray) const {
   if (nodes_.empty()) return std::nullopt;
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
-  const Vec3 inv_d(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
+  // 1/d per axis, +∞ for a zero component (set, not divided: no division-by-zero flag; 1/d of a
+  // subnormal overflows to ∞ and counts as parallel, as its slab lies beyond any finite t_max).
+  const auto inverse = [](double x) { return x == 0 ? std::numeric_limits<double>::infinity() : 1.0 / x; };
+  const Vec3 inv_d(inverse(d.x()), inverse(d.y()), inverse(d.z()));
   int kz = 0;
   d.cwiseAbs().maxCoeff(&kz);
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;

@@ -29,8 +29,10 @@ Vec3 sky_grid_disk_direction(double px, double py) {
 }
 
 bool sky_grid_cell(const Vec3& dir, int cells, int& ix, int& iy, double& fx, double& fy) {
+  // Non-finite components first: an ordered comparison with a NaN raises FE_INVALID.
+  if (!std::isfinite(dir.x()) || !std::isfinite(dir.y()) || !std::isfinite(dir.z()) || !(dir.z() > 0.0)) return false;
   const double len = dir.norm();
-  if (!(dir.z() > 0.0) || !(len > 0.0) || !std::isfinite(len)) return false;
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
   const double k = 1.0 / (len + dir.z());  // p = (x, y)/(|ω| + z): the projection of ω/|ω|
   const double u = (dir.x() * k + 1.0) * 0.5 * cells, v = (dir.y() * k + 1.0) * 0.5 * cells;
   ix = std::clamp(static_cast<int>(u), 0, cells - 1);

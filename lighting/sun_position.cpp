@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <span>
 
 #include "geometry/input_error.h"
@@ -189,15 +190,17 @@ double julian_day(const LocalDateTime& t) {
 }
 
 SpaResult sun_position_spa(const SpaInput& in) {
-  if (!(in.latitude_deg >= -90 && in.latitude_deg <= 90)) bad("latitude_deg", in.latitude_deg, "is outside [-90, 90]");
-  if (!(in.longitude_deg >= -180 && in.longitude_deg <= 180)) bad("longitude_deg", in.longitude_deg, "is outside [-180, 180]");
-  if (!(in.elevation_m >= -6500000 && std::isfinite(in.elevation_m))) bad("elevation_m", in.elevation_m, "is below -6500000 m");
+  // NaN is tested first (std::isnan): an ordered comparison with a NaN raises FE_INVALID.
+  const auto within = [](double x, double lo, double hi) { return !std::isnan(x) && x >= lo && x <= hi; };
+  if (!within(in.latitude_deg, -90, 90)) bad("latitude_deg", in.latitude_deg, "is outside [-90, 90]");
+  if (!within(in.longitude_deg, -180, 180)) bad("longitude_deg", in.longitude_deg, "is outside [-180, 180]");
+  if (!within(in.elevation_m, -6500000, std::numeric_limits<double>::max())) bad("elevation_m", in.elevation_m, "is below -6500000 m");
   if (in.time.year < -2000 || in.time.year > 6000) bad("year", in.time.year, "is outside the SPA's range [-2000, 6000]");
-  if (!(in.pressure_mbar > 0 && in.pressure_mbar <= 5000)) bad("pressure_mbar", in.pressure_mbar, "is outside (0, 5000]");
-  if (!(in.temperature_C > -273 && in.temperature_C <= 6000)) bad("temperature_C", in.temperature_C, "is outside (-273, 6000]");
-  if (!(std::abs(in.delta_t_s) <= 8000)) bad("delta_t_s", in.delta_t_s, "is outside [-8000, 8000]");
-  if (!(std::abs(in.atmos_refraction_deg) <= 5)) bad("atmos_refraction_deg", in.atmos_refraction_deg, "is outside [-5, 5]");
-  if (!(std::abs(in.time.utc_offset_hours) <= 18)) bad("utc_offset_hours", in.time.utc_offset_hours, "is outside [-18, 18]");
+  if (!within(in.pressure_mbar, 0, 5000) || in.pressure_mbar == 0) bad("pressure_mbar", in.pressure_mbar, "is outside (0, 5000]");
+  if (!within(in.temperature_C, -273, 6000) || in.temperature_C == -273) bad("temperature_C", in.temperature_C, "is outside (-273, 6000]");
+  if (!within(in.delta_t_s, -8000, 8000)) bad("delta_t_s", in.delta_t_s, "is outside [-8000, 8000]");
+  if (!within(in.atmos_refraction_deg, -5, 5)) bad("atmos_refraction_deg", in.atmos_refraction_deg, "is outside [-5, 5]");
+  if (!within(in.time.utc_offset_hours, -18, 18)) bad("utc_offset_hours", in.time.utc_offset_hours, "is outside [-18, 18]");
 
   SpaResult r;
   // 3.1 Julian day, century and millennium (eqs. 4–8).
