@@ -4,6 +4,7 @@
 #include "io/toml_ascii.h"
 
 #include <cstdio>
+#include <vector>
 
 #include "geometry/input_error.h"
 #include "io/utf8_text.h"
@@ -59,6 +60,42 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
     }
   };
 
+  // Bracket nesting outside strings ('[' array, '{' inline table) and whether only blanks precede
+  // on the current top-level line: a '[' there opens a table header, elsewhere an array.
+  std::vector<char> nest;
+  bool line_start = true;
+  // Two shapes toml++ 3.3.0 never checks before an assertion (TOML_ASSERT_ASSUME, undefined
+  // behaviour where NDEBUG makes it an assumption): a table header whose key starts with neither
+  // a key character nor a quote (`[}`, `[ #`), and '}' where an array expects a value (`[}`,
+  // `[1, }`). Both are errors in TOML; here they get one before toml++ sees them. `from` is the
+  // offset after the '[' (or ',') in question.
+  const auto check_after_bracket = [&](std::size_t from, bool header) {
+    std::uint32_t l = line, k = col + static_cast<std::uint32_t>(from);
+    std::size_t j = i + from;
+    while (j < in.size()) {
+      const char d = in[j];
+      if (d == ' ' || d == '\t') {
+        ++j, ++k;
+      } else if (!header && (d == '\n' || d == '\r')) {
+        if (d == '\n') ++l, k = 0;
+        ++j, ++k;
+      } else if (!header && d == '#') {
+        while (j < in.size() && in[j] != '\n') ++j;
+      } else {
+        break;
+      }
+    }
+    if (j >= in.size()) return;  // end of text: toml++'s own error
+    const char d = in[j];
+    const auto shown = [&] { return d >= 0x20 && d < 0x7F ? std::string("'") + d + "'" : std::string("a control or non-ASCII character"); };
+    const bool key_start = (d >= 'A' && d <= 'Z') || (d >= 'a' && d <= 'z') || (d >= '0' && d <= '9') || d == '_' ||
+                           d == '-' || d == '"' || d == '\'' || d == ']';
+    const std::string at_d = name + ":" + std::to_string(l) + ":" + std::to_string(k) + ": ";
+    if (header && !key_start)
+      throw InputError(at_d + "a table header holds a key (bare, or quoted), saw " + shown());
+    if (!header && d == '}') throw InputError(at_d + "expected a value or ']' in the array, saw '}'");
+  };
+
   while (i < in.size()) {
     char32_t c = 0;
     const std::size_t n = utf8_sequence_length(in, i, &c);
@@ -77,6 +114,19 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
                            ") outside a string or comment: TOML keys and values other than strings are ASCII; quote a "
                            "key that holds it (\"" + printable_text(ch) + "\" = ...)");
         }
+        if (c == '[') {
+          const bool header = nest.empty() && line_start;
+          if (!header) nest.push_back('[');
+          check_after_bracket(header && at(1) == '[' ? 2 : 1, header);
+        } else if (c == ',' && !nest.empty() && nest.back() == '[') {
+          check_after_bracket(1, false);
+        } else if (c == '{') {
+          nest.push_back('{');
+        } else if ((c == ']' || c == '}') && !nest.empty() && nest.back() == (c == ']' ? '[' : '{')) {
+          nest.pop_back();
+        }
+        if (c != ' ' && c != '\t' && c != '\r' && c != '\n') line_start = false;
+        if (c == '\n' && nest.empty()) line_start = true;
         if (c == '#') {
           state = State::kComment;
           copy(1);
@@ -101,6 +151,7 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
           if (c == '\n') {
             end_line();
             state = State::kOutside;
+            if (nest.empty()) line_start = true;
           }
         }
         break;

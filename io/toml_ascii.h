@@ -16,8 +16,11 @@
 // Every non-ASCII code point is thus removed by construction, whatever the lexer below thinks
 // of a malformed file: a malformed file still gets toml++'s own error, on ASCII text.
 // Also rejected here, with file:line:column: bytes that are not UTF-8, control characters other
-// than tab, CR and LF (TOML allows none), and more than five quotes closing a multi-line
-// literal string. A leading byte-order mark is dropped.
+// than tab, CR and LF (TOML allows none), more than five quotes closing a multi-line literal
+// string, and two malformed shapes on which toml++ 3.3.0 reaches an assertion before its own
+// check (undefined behaviour where NDEBUG turns it into an assumption, as clang does): a table
+// header whose key starts with neither a key character nor a quote (`[}`), and '}' where an
+// array expects a value (`v = [}`). A leading byte-order mark is dropped.
 //
 // Lines are kept; columns move where an escape is longer than its character, and
 // original_column maps toml++'s columns back to the user's file (code points, 1-based).

@@ -11,6 +11,7 @@
 
 #include "geometry/input_error.h"
 #include "io/scene_file.h"
+#include "io/toml_ascii.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -268,6 +269,28 @@ BOOST_AUTO_TEST_CASE(bytes_toml_must_not_see_are_errors) {
   }
   // A --set value: not UTF-8, or holding a control character (a line break would add keys).
   BOOST_TEST(contains(error_of([] { parse(kBase, {"sky.model=\xC3"}); }), "not valid UTF-8"));
+  // Shapes toml++ 3.3.0 reaches an assertion on (found by fuzz/scene_file_fuzz.cpp and
+  // fuzz/scene_override_fuzz.cpp): a header without a key, '}' where an array expects a value
+  // (both rejected in io/toml_ascii.cpp), a date-time without its time (toml++'s own error).
+  const std::vector<std::pair<std::string, std::vector<std::string>>> shapes{
+      {kBase + "[}\n", {f + ":15:2:", "a table header holds a key", "'}'"}},
+      {kBase + "[[ #\n", {f + ":15:4:", "a table header holds a key", "'#'"}},
+      {kBase + "[sky]\nv = [}\n", {f + ":16:6:", "expected a value or ']' in the array, saw '}'"}},
+      {kBase + "[sky]\nv = [1,\n  # note\n  }\n", {f + ":18:3:", "saw '}'"}},
+      // A date-time whose 'T' is followed by no time: toml++ asserts a digit, then checks it.
+      {kBase + "[sky]\nv = 2024-06-21T'10:00:00+02:00\n", {f + ":16:", "hour"}},
+  };
+  for (const auto& [text, parts] : shapes) {
+    const std::string msg = error_of([&] { parse(text); });
+    BOOST_TEST_INFO("message: " << msg);
+    for (const std::string& p : parts) BOOST_TEST(contains(msg, p));
+  }
+  const std::string set_msg = error_of([] { parse(kBase, {"sky.model=[}"}); });
+  BOOST_TEST(contains(set_msg, "sky.model '[}': unknown sky model"), set_msg);  // not TOML: a plain string
+  // The same brackets where TOML allows them still parse: arrays of tables, nested and
+  // multi-line arrays, a '[' inside a string, '}' closing an inline table inside an array.
+  const std::string ok = error_of([] { AsciiToml("v = [[1, 2], [\n 3, # c\n ], {a = 1}]\ns = \"[}\"\n[[list]]\nx = [ ]\n", "t"); });
+  BOOST_TEST(ok.empty(), ok);
   BOOST_TEST(contains(error_of([] { parse(kBase, {"quality.samples=2\nquality.bands=3"}); }), "control character"));
 }
 
