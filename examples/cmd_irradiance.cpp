@@ -165,15 +165,16 @@ std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
 // --sun-only: sun hours over the moments, no sky model.
 void run_sun_hours(const IrradianceArgs& a, const std::vector<SunMoment>& moments) {
   const PointIrradianceOptions opt = irradiance_options(a.job);
+  const std::vector<std::string> columns = {"svf", "sky_exposure", "sun_hours"};
+  const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
-  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
+  a.job.warn_about_points("irradiance", scene, table);
   Progress progress("irradiance", !a.job.quiet);
   const std::vector<PointIrradiation> r =
       compute_point_sun_hours(scene, table.points, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::vector<std::string> columns = {"svf", "sky_exposure", "sun_hours"};
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
     values[0][i] = r[i].svf;
@@ -202,18 +203,19 @@ void run_times(const IrradianceArgs& a) {
   const std::vector<SunMoment> moments = a.times.empty() ? generated_moments(a) : read_moments(a);
   if (a.sun_only) return run_sun_hours(a, moments);
 
+  const std::vector<std::string> columns = {"svf",        "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",
+                                            "global_Wh_m2", "sky_lxh",    "sun_lxh",   "global_lxh"};
+  const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
-  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
+  a.job.warn_about_points("irradiance", scene, table);
   Progress progress("irradiance", !a.job.quiet), sky_progress("irradiance: skies", !a.job.quiet, "moments");
   const std::vector<PointIrradiation> r = compute_point_irradiation(
       scene, table.points, atm, spec, moments, opt, [&](std::size_t d, std::size_t t) { progress(d, t); },
       [&](std::size_t d, std::size_t t) { sky_progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const std::vector<std::string> columns = {"svf",        "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",
-                                            "global_Wh_m2", "sky_lxh",    "sun_lxh",   "global_lxh"};
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
     const double v[] = {r[i].svf,       r[i].sky_exposure, r[i].sun_hours, r[i].sky_Wh_m2, r[i].sun_Wh_m2,
@@ -297,10 +299,13 @@ void run_weather(const IrradianceArgs& a) {
   WeatherHoursReport hrep;
   const std::vector<WeatherHour> hours = weather_hours(series, hopt, &hrep);
 
+  const std::vector<std::string> columns = {"svf",          "sky_exposure",  "ground_view",  "global_kWh_m2", "sky_kWh_m2",
+                                            "sun_kWh_m2",   "ground_kWh_m2", "global_klxh",  "sun_hours"};
+  const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
-  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
+  a.job.warn_about_points("irradiance", scene, table);
   Progress progress("irradiance", !a.job.quiet);
   std::unique_ptr<HourlyNetcdfWriter> hourly;
   if (!a.hourly.empty()) hourly = std::make_unique<HourlyNetcdfWriter>(hourly_spec(a, series, table));
@@ -312,8 +317,6 @@ void run_weather(const IrradianceArgs& a) {
       compute_point_climate(scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); }, sink);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const std::vector<std::string> columns = {"svf",          "sky_exposure",  "ground_view",  "global_kWh_m2", "sky_kWh_m2",
-                                            "sun_kWh_m2",   "ground_kWh_m2", "global_klxh",  "sun_hours"};
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(run.points.size()));
   for (std::size_t i = 0; i < run.points.size(); ++i) {
     const PointClimate& r = run.points[i];
@@ -416,18 +419,19 @@ void run(const IrradianceArgs& a) {
   const SunPlacement sun = a.sun_sky.place_sun();
   const SkyModel sky = a.sun_sky.make_sky(sun);
 
+  const std::vector<std::string> columns = {"svf",      "sky_exposure", "cos_incidence", "sun_visible",
+                                            "sky_W_m2", "sun_W_m2",     "global_W_m2",   "sky_lx",
+                                            "sun_lx",   "global_lx",    "sky_ratio"};
+  const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
-  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
+  a.job.warn_about_points("irradiance", scene, table);
   Progress progress("irradiance", !a.job.quiet);
   const std::vector<PointIrradiance> r =
       compute_point_irradiance(scene, table.points, sky, opt, [&](std::size_t d, std::size_t t) { progress(d, t); });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const std::vector<std::string> columns = {"svf",      "sky_exposure", "cos_incidence", "sun_visible",
-                                            "sky_W_m2", "sun_W_m2",     "global_W_m2",   "sky_lx",
-                                            "sun_lx",   "global_lx",    "sky_ratio"};
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
     const double v[] = {r[i].svf,      r[i].sky_exposure,           r[i].cos_incidence, r[i].sun_visible ? 1.0 : 0.0,

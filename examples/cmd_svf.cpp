@@ -22,6 +22,7 @@
 
 #include "examples/command_registry.h"
 #include "examples/demo_scene.h"
+#include "examples/point_checks.h"
 #include "examples/point_job_args.h"
 #include "geometry/band_visibility.h"
 #include "geometry/input_error.h"
@@ -95,12 +96,18 @@ void run_demo(const SvfArgs& a) {
 void run(const SvfArgs& a) {
   if (a.demo) return run_demo(a);
   a.job.require_files("svf", " (or --demo)");
-  if (!a.horizon.empty()) (void)horizon_azimuth_count(a.horizon_step);  // a bad step fails before the work
+  if (!a.horizon.empty()) {  // a bad step or file fails before the work
+    (void)horizon_azimuth_count(a.horizon_step);
+    std::vector<std::pair<std::string, std::string>> inputs{{"--points", a.job.points}, {"--out", a.job.out}};
+    for (const std::string& m : a.job.meshes) inputs.emplace_back("--mesh", m);
+    check_output_file("--horizon", a.horizon, inputs);
+  }
   const VisibilityOptions opt = a.job.visibility_options();
+  const PointsTable table = a.job.read_points({"svf", "sky_exposure"});
   TriangleSoup soup = a.job.load_meshes();
-  const PointsTable table = read_points_csv(a.job.points);
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene(std::move(soup));
+  a.job.warn_about_points("svf", scene, table);
   Progress progress("svf", !a.job.quiet);
   // Only the two numbers per point are kept (not the visibility cache): memory stays O(points).
   const SkyFactorsRun run = compute_sky_factors(scene, table.points, opt, a.job.method(), a.job.threads,

@@ -4,15 +4,19 @@
 #include <cmath>
 #include <cstdio>
 
+#include "examples/point_checks.h"
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
 
 namespace skyband::cli {
 
 void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
-  cmd->add_option("--mesh", meshes, "Mesh file (OBJ, OFF, PLY, STL); repeat for several")->check(CLI::ExistingFile);
+  cmd->add_option("--mesh", meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON .json, CityJSONSeq .jsonl); repeat\nfor several")->check(CLI::ExistingFile);
   cmd->add_option("--points", points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
   cmd->add_option("--out", out, out_help);
+  cmd->add_option("--offset", offset,
+                  "Move every point this many metres along its normal before computing (e.g. 0.1 for points on a\n"
+                  "facade, as Ladybug and Honeybee do; default 0); the output keeps the input's coordinates");
   o_method_ = cmd->add_option("--method", method_,
                   "auto (default): exact at every point, for any mesh — the exact horizon where the scene is\n"
                   "closed buildings extruded from a flat floor at or below the point (fastest), the exact\n"
@@ -48,6 +52,22 @@ void PointJobArgs::require_files(const std::string& command, const std::string& 
   if (meshes.empty()) throw InputError(command + ": at least one --mesh FILE is required" + alternative);
   if (points.empty()) throw InputError(command + ": --points FILE.csv is required");
   if (out.empty()) throw InputError(command + ": --out FILE.csv is required");
+  std::vector<std::pair<std::string, std::string>> inputs{{"--points", points}};
+  for (const std::string& m : meshes) inputs.emplace_back("--mesh", m);
+  check_output_file("--out", out, inputs);
+  if (!std::isfinite(offset) || std::abs(offset) > 1000)
+    throw InputError("--offset " + std::to_string(offset) + ": must be a distance in metres within [-1000, 1000]");
+}
+
+PointsTable PointJobArgs::read_points(const std::vector<std::string>& out_columns) const {
+  PointsTable table = read_points_csv(points);
+  check_output_columns(out, table, out_columns);
+  offset_points(table, offset);
+  return table;
+}
+
+void PointJobArgs::warn_about_points(const std::string& command, const Scene& scene, const PointsTable& table) const {
+  print_point_warnings(command, find_point_warnings(scene, table), points);
 }
 
 TriangleSoup PointJobArgs::load_meshes() const {

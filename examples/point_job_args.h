@@ -10,7 +10,9 @@
 
 #include "geometry/band_visibility.h"
 #include "geometry/sky_factors.h"
+#include "geometry/scene.h"
 #include "geometry/triangle_soup.h"
+#include "io/points_csv.h"
 
 namespace skyband::cli {
 
@@ -20,9 +22,10 @@ class PointJobArgs {
   std::string points, out;
   int threads = 0;
   bool quiet = false;
+  double offset = 0;  // --offset D: metres along each point's normal
 
-  // Adds --mesh, --points, --out (`out_help` says which columns are appended), --method, --bands,
-  // --tolerance, --threads, --quiet. The object must outlive the command's callback.
+  // Adds --mesh, --points, --out (`out_help` says which columns are appended), --offset, --method,
+  // --bands, --tolerance, --threads, --quiet. The object must outlive the command's callback.
   void add_to(CLI::App* cmd, const std::string& out_help);
   // The accuracy options (validated: InputError naming the flag and value).
   VisibilityOptions visibility_options() const;
@@ -35,8 +38,14 @@ class PointJobArgs {
     return method_ == "exact" ? SkyFactorsMethod::exact : SkyFactorsMethod::automatic;
   }
   // Requires --mesh, --points and --out (InputError "<command>: ..." naming what is missing;
-  // `alternative` is appended to the --mesh message, e.g. " (or --demo)").
+  // `alternative` is appended to the --mesh message, e.g. " (or --demo)"), and checks --out
+  // before any work (examples/point_checks.h: its folder, not an input file).
   void require_files(const std::string& command, const std::string& alternative = "") const;
+  // Reads --points, checks that none of `out_columns` is already an input column, and applies
+  // --offset (examples/point_checks.h).
+  PointsTable read_points(const std::vector<std::string>& out_columns) const;
+  // The point sanity warnings against the scene on stderr (printed even with --quiet).
+  void warn_about_points(const std::string& command, const Scene& scene, const PointsTable& table) const;
   // All meshes appended in order; each file's read report on stderr unless quiet.
   TriangleSoup load_meshes() const;
 

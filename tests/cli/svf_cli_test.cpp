@@ -235,3 +235,68 @@ BOOST_AUTO_TEST_CASE(messages_are_one_whole_line) {
   BOOST_TEST(nul.err == "skyband: error: " + (d / "nul.csv").string() + ":2: column 'y': value '2\\x00x' is not a number\n");
   BOOST_TEST(!fs::exists(d / "out.csv"));
 }
+
+// Output files and columns are checked before any work: --out equal to --points (the input
+// stays as it was), an output column the input already has, --horizon into a missing folder.
+BOOST_AUTO_TEST_CASE(outputs_are_checked_before_the_work) {
+  const fs::path d = skyband::test::test_folder("svf_cli_outputs");
+  write_cube(d / "cube.obj");
+  const std::string points = "x,y,z,svf\n1,2,30,0.3\n";
+  std::ofstream(d / "with_svf.csv") << points;
+  std::ofstream(d / "ok.csv") << "x,y,z\n1,2,30\n";
+  const std::string mesh = "svf --mesh " + q(d / "cube.obj");
+  auto r = run_skyband(mesh + " --points " + q(d / "ok.csv") + " --out " + q(d / "ok.csv"));
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("is the --points file; writing it would overwrite the input") != std::string::npos, r.err);
+  BOOST_TEST(slurp(d / "ok.csv") == "x,y,z\n1,2,30\n");
+  r = run_skyband(mesh + " --points " + q(d / "with_svf.csv") + " --out " + q(d / "o.csv"));
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("output column 'svf' already exists in the points file") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(d / "o.csv"));
+  r = run_skyband(mesh + " --points " + q(d / "ok.csv") + " --out " + q(d / "o.csv") + " --horizon " +
+                  q(d / "missing" / "h.csv"));
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("--horizon '") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(d / "o.csv"));
+  r = run_skyband(mesh + " --points " + q(d / "ok.csv") + " --out " + q(d / "o.csv") + " --offset nan");
+  BOOST_TEST(r.exit_code == 2, r.err);
+}
+
+// Point sanity: against a cube in projected metres (RD New-like coordinates), points given in
+// degrees, with x and y swapped, far away, and 0.1 mm behind a wall they face each get a warning
+// naming their lines; the job still runs. --offset 0.1 moves the point behind the east wall to
+// 0.1 m in front of it, where the wall's half-space hides the whole cube: SVF 0.5 exactly (an
+// open vertical face), and the warning is gone.
+BOOST_AUTO_TEST_CASE(point_sanity_warnings_and_offset) {
+  const fs::path d = skyband::test::test_folder("svf_cli_point_sanity");
+  {
+    std::ofstream f(d / "cube_rd.obj");
+    for (int i = 0; i < 8; ++i)
+      f << "v " << (i & 1 ? 85010 : 85000) << ' ' << (i & 2 ? 446010 : 446000) << ' ' << (i & 4 ? 10 : 0) << '\n';
+    f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  }
+  std::ofstream(d / "pts.csv") << "x,y,z,nx,ny,nz\n"
+                                  "4.36,52.01,1,0,0,1\n"          // line 2: degrees
+                                  "446005,85005,1,0,0,1\n"        // line 3: swapped
+                                  "95000,446000,1,0,0,1\n"        // line 4: far away
+                                  "85009.9999,446005,5,1,0,0\n"   // line 5: behind the east wall
+                                  "85005,446005,10.5,0,0,1\n";    // line 6: above the roof, fine
+  const std::string cmd = "svf --mesh " + q(d / "cube_rd.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv");
+  auto r = run_skyband(cmd + " --quiet");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("1 point of " + (d / "pts.csv").string() + " (line 2): coordinates like longitude/latitude") !=
+                 std::string::npos, r.err);
+  BOOST_TEST(r.err.find("(line 3): inside the model only with x and y swapped") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("(line 4): far outside the model's box") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("(line 5): a surface less than 1 cm in front along the normal") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("line 6") == std::string::npos, r.err);
+  r = run_skyband(cmd + " --quiet --offset 0.1");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("1 cm in front") == std::string::npos, r.err);
+  std::istringstream out(slurp(d / "o.csv"));
+  std::string line;
+  for (int i = 0; i < 5; ++i) std::getline(out, line);  // header + lines 2..5
+  const auto last = line.rfind(','), prev = line.rfind(',', last - 1);
+  BOOST_TEST(std::stod(line.substr(prev + 1, last - prev - 1)) == 0.5, tt::tolerance(1e-12));
+  BOOST_TEST(line.starts_with("85009.9999,446005,5,"), line);  // the input's cells pass through unchanged
+}
