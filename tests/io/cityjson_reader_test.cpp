@@ -75,7 +75,8 @@ void walk_chunk(const json& chunk, const json& transform, const Select& select, 
   auto position = [&](std::size_t i) {
     return Vec3(coordinate(i, 0) - coordinate(0, 0), coordinate(i, 1) - coordinate(0, 1), coordinate(i, 2) - coordinate(0, 2));
   };
-  for (const auto& [id, o] : chunk.at("CityObjects").items()) {
+  for (const auto& item : chunk.at("CityObjects").items()) {
+    const json& o = item.value();  // not a structured binding: clang 14 cannot capture one in a lambda
     ++w.objects;
     bool read = false;
     for (const json& g : o.value("geometry", json::array())) {
