@@ -12,6 +12,9 @@ namespace skyband::cli {
 
 void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
   cmd->add_option("--mesh", meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON .json, CityJSONSeq .jsonl); repeat\nfor several")->check(CLI::ExistingFile);
+  cmd->add_option("--lod", lod,
+                  "City models (CityJSON): read every object at this LoD, e.g. 1.2, 1.3 or 2.2 for 3D BAG (default:\n"
+                  "each object at the highest LoD it has; objects without the given LoD are skipped and counted)");
   cmd->add_option("--points", points, "CSV with header: x,y,z[,nx,ny,nz] (metres), other columns pass through");
   cmd->add_option("--out", out, out_help);
   cmd->add_option("--offset", offset,
@@ -74,7 +77,9 @@ TriangleSoup PointJobArgs::load_meshes() const {
   TriangleSoup soup;
   for (const std::string& file : meshes) {
     MeshReadReport report;
-    soup.append(read_mesh(file, &report));
+    MeshReadOptions options;
+    if (!lod.empty()) options.lod = lod;
+    soup.append(read_mesh(file, &report, options));
     if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
   }
   return soup;

@@ -23,6 +23,7 @@ class PointJobArgs {
   int threads = 0;
   bool quiet = false;
   double offset = 0;  // --offset D: metres along each point's normal
+  std::string lod;    // --lod: city models read at this LoD ("" = each object's highest)
 
   // Adds --mesh, --points, --out (`out_help` says which columns are appended), --offset, --method,
   // --bands, --tolerance, --threads, --quiet. The object must outlive the command's callback.

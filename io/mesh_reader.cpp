@@ -224,14 +224,17 @@ std::string MeshReadReport::summary() const {
 }
 
 // CityJSON through its own reader (io/cityjson_reader.h), reported in the mesh readers' terms.
-TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* report) {
+TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* report, const MeshReadOptions& options) {
   CityModelReport c;
-  TriangleSoup soup = read_cityjson(file, {}, &c);
+  CityModelReadOptions city;
+  city.lod = options.lod;
+  TriangleSoup soup = read_cityjson(file, city, &c);
   if (report) {
     MeshReadReport r;
     r.file = c.file;
     r.format = c.format;
-    r.reader = "skyband CityJSON reader (each object at its highest LoD)";
+    r.reader = options.lod ? "skyband CityJSON reader (each object at LoD " + *options.lod + ")"
+                           : std::string("skyband CityJSON reader (each object at its highest LoD)");
     r.vertices_in_file = c.vertices;
     r.faces_in_file = r.faces_read = c.surfaces;
     r.triangles = c.triangles;
@@ -242,7 +245,7 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
     std::string lods;
     for (const auto& [lod, n] : c.lods_used) lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
     if (!lods.empty()) r.notes.push_back(lods);
-    r.notes.push_back(c.crs.empty() ? "no referenceSystem" : "referenceSystem " + c.crs);
+    if (!c.crs.empty()) r.notes.push_back("referenceSystem " + c.crs);  // without one the reader's own note says so
     r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
     r.defects = analyse_defects(soup);
     *report = std::move(r);
@@ -250,9 +253,11 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
   return soup;
 }
 
-TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report) {
+TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report, const MeshReadOptions& options) {
   const std::string name = file.string();
-  if (is_cityjson_path(file)) return read_city_model(file, report);
+  if (is_cityjson_path(file)) return read_city_model(file, report, options);
+  if (options.lod)
+    throw InputError(name + ": --lod " + *options.lod + " applies to city models (CityJSON, CityJSONSeq); this file has no LoDs");
   const std::string extension = lower(file.extension().string());
   const auto& supported = supported_mesh_extensions();
   if (std::find(supported.begin(), supported.end(), extension) == supported.end()) {

@@ -46,6 +46,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -70,8 +71,16 @@ struct MeshReadReport {
   std::string summary() const;            // a few human-readable lines
 };
 
+struct MeshReadOptions {
+  // City models (CityJSON, CityJSONSeq): read each object at exactly this LoD ("1.2", "2.2";
+  // objects without it are skipped and counted); unset: each object at the highest it has
+  // (io/cityjson_reader.h). Other formats have no LoD: InputError when set for them.
+  std::optional<std::string> lod;
+};
+
 // Reads one mesh file. Throws InputError on unreadable, malformed or empty input.
-TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr);
+TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr,
+                       const MeshReadOptions& options = {});
 
 // The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl", ".json", ".jsonl".
 const std::vector<std::string>& supported_mesh_extensions();

@@ -300,3 +300,29 @@ BOOST_AUTO_TEST_CASE(point_sanity_warnings_and_offset) {
   BOOST_TEST(std::stod(line.substr(prev + 1, last - prev - 1)) == 0.5, tt::tolerance(1e-12));
   BOOST_TEST(line.starts_with("85009.9999,446005,5,"), line);  // the input's cells pass through unchanged
 }
+
+// --lod reads a city model at one LoD: the 3D BAG sample's BuildingParts give 460 triangles at
+// their highest LoD (2.2) and 312 at LoD 1.2 — the reader's counts, which cityjson_reader_test
+// (bag_v1_explicit_lod_selects_exactly_that_lod) checks against an independent walk of the JSON;
+// here the flag must reach the reader. A LoD no object has, and --lod on a format without
+// LoDs, are errors.
+BOOST_AUTO_TEST_CASE(lod_selects_the_city_model_level) {
+  const fs::path d = skyband::test::test_folder("svf_cli_lod");
+  const fs::path bag = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "3dbag_v1_sample_denhaag.city.json";
+  std::ofstream(d / "p.csv") << "x,y,z\n0,0,0\n";
+  const std::string cmd = "svf --mesh " + q(bag) + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv");
+  auto r = run_skyband(cmd);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("460 triangles") != std::string::npos, r.err);
+  r = run_skyband(cmd + " --lod 1.2");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("each object at LoD 1.2") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("312 triangles") != std::string::npos, r.err);
+  r = run_skyband(cmd + " --lod 3");
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("requested LoD 3") != std::string::npos, r.err);
+  skyband::test::write_cube_obj(d / "cube.obj");
+  r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv") + " --lod 2");
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("applies to city models") != std::string::npos, r.err);
+}
