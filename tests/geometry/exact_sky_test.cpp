@@ -13,6 +13,7 @@
 // the band method's default missed, and the degeneracy corpus of ../shared/data/degenerate.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <vector>
@@ -29,6 +30,7 @@
 using namespace skyband;
 using namespace skyband::oracle;
 namespace fs = std::filesystem;
+namespace tt = boost::test_tools;
 
 namespace {
 
@@ -57,6 +59,14 @@ void add_open_box(TriangleSoup& s, const Vec3& lo, const Vec3& hi) {
   add_quad(s, c[4], c[5], c[6], c[7]);
 }
 
+// Below this visible sky (SVF and exposure) the oracle's own error can exceed kExact: its
+// cube-face projection resolves a grazing sliver of sky only to a few 1e-9 absolute (SVF 3.809e-8
+// against the exact 3.70215e-8 in grazing_sliver_under_a_flat_sheet below, exposure 1.71e-8
+// against 1.29e-8 under cgal_quads_to_stitch.off). Such points are compared to kOracleSliverError
+// absolute; the sliver test pins the method's value to 1e-8 relative by a one-dimensional
+// integral instead.
+constexpr double kOracleSliver = 1e-6, kOracleSliverError = 1e-8;
+
 // Every point's SVF and exposure by the default method against the union oracle.
 void check_against_oracle(const TriangleSoup& soup, const std::vector<QueryPoint>& pts, const char* what,
                           SkyFactorsMethod method = SkyFactorsMethod::automatic) {
@@ -68,8 +78,10 @@ void check_against_oracle(const TriangleSoup& soup, const std::vector<QueryPoint
     const UnionSkyFactors ref = sky_union_oracle(pts[i].position + kOffset * pts[i].normal, pts[i].normal, soup);
     const SkyFactors& f = run.factors[i];
     worst = std::max({worst, std::abs(f.svf - ref.svf), std::abs(f.sky_exposure - ref.sky_exposure)});
-    BOOST_TEST(std::abs(f.svf - ref.svf) < kExact, what << " point " << i << ": svf " << f.svf << " oracle " << ref.svf);
-    BOOST_TEST(std::abs(f.sky_exposure - ref.sky_exposure) < kExact,
+    const bool sliver = ref.svf < kOracleSliver && ref.sky_exposure < kOracleSliver;
+    const double tol = sliver ? kOracleSliverError : kExact;
+    BOOST_TEST(std::abs(f.svf - ref.svf) < tol, what << " point " << i << ": svf " << f.svf << " oracle " << ref.svf);
+    BOOST_TEST(std::abs(f.sky_exposure - ref.sky_exposure) < tol,
                what << " point " << i << ": exposure " << f.sky_exposure << " oracle " << ref.sky_exposure);
   }
   BOOST_TEST_MESSAGE(what << ": " << pts.size() << " points, largest difference from the oracle " << worst);
@@ -79,7 +91,7 @@ void check_against_oracle(const TriangleSoup& soup, const std::vector<QueryPoint
 std::vector<QueryPoint> random_points(gen::Rng& rng, std::size_t n, double r, double h) {
   std::vector<QueryPoint> pts;
   for (std::size_t i = 0; i < n; ++i) {
-    QueryPoint q{Vec3(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(0, h)), unit_normal(rng.uniform(0, kPi), rng.uniform(0, 6.28))};
+    QueryPoint q{Vec3{rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(0, h)}, rng.unit_normal(0, kPi, 0, 6.28)};
     if (i % 4 == 0) q.normal = Vec3(0, 0, 1);
     pts.push_back(q);
   }
@@ -105,10 +117,10 @@ BOOST_AUTO_TEST_CASE(triangle_soups_with_floating_triangles) {
     gen::Rng rng(seed);
     TriangleSoup soup;
     for (int t = 0; t < 12; ++t) {
-      const Vec3 c(rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(0, 8));
-      add_triangle(soup, c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)),
-                   c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)),
-                   c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)));
+      const Vec3 c{rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(0, 8)};
+      const Vec3 a = c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)};
+      const Vec3 b = c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)};
+      add_triangle(soup, a, b, c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)});
     }
     check_against_oracle(soup, random_points(rng, 10, 6, 5), "soup");
   }
@@ -136,7 +148,7 @@ BOOST_AUTO_TEST_CASE(open_bottom_boxes_on_a_ground_with_shared_walls_and_t_junct
     add_quad(soup, Vec3(0, 10, 0), Vec3(10, 10, 0), Vec3(10, 10, 4), Vec3(0, 10, 4));
     add_quad(soup, Vec3(0, 10, 4), Vec3(10, 10, 4), Vec3(10, 10, 8), Vec3(0, 10, 8));
     std::vector<QueryPoint> pts;
-    for (int i = 0; i < 10; ++i) pts.push_back({Vec3(rng.uniform(-20, 20), rng.uniform(-9, 9), 0.05), Vec3(0, 0, 1)});
+    for (int i = 0; i < 10; ++i) pts.push_back({Vec3{rng.uniform(-20, 20), rng.uniform(-9, 9), 0.05}, Vec3(0, 0, 1)});
     pts.push_back({Vec3(-5, -3.05, 3), Vec3(0, -1, 0)});   // on a facade, facing out
     pts.push_back({Vec3(-1, 9.95, 2), Vec3(0, -1, 0)});    // before the T-junction wall
     pts.push_back({Vec3(rng.uniform(-11, -2), 0, 1), Vec3(0, 0, 1)});  // inside a house: no sky
@@ -311,7 +323,7 @@ BOOST_AUTO_TEST_CASE(sun_look_up_agrees_with_the_exact_test) {
     const VisibleSky& v = sky.compute(q);
     BandVisibility exact(scene, VisibilityOptions{});
     std::vector<Vec3> dirs;
-    for (int k = 0; k < 60; ++k) dirs.push_back(unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28)));
+    for (int k = 0; k < 60; ++k) dirs.push_back(rng.unit_normal(0, kPi / 2, 0, 6.28));
     for (const auto& b : boxes)
       for (int c = 4; c < 8; ++c) dirs.push_back((b.corner(c) - v.point).normalized());
     for (std::size_t k = 0; k < dirs.size(); ++k) {
@@ -394,8 +406,8 @@ BOOST_AUTO_TEST_CASE(degeneracy_corpus) {
       gen::Rng rng(5);
       std::vector<QueryPoint> pts;
       for (int i = 0; i < 6; ++i) {
-        const Vec3 t(rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2));
-        pts.push_back({box.lo + (box.hi - box.lo).cwiseProduct(t), unit_normal(rng.uniform(0, kPi), rng.uniform(0, 6.28))});
+        const Vec3 t{rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2)};
+        pts.push_back({box.lo + (box.hi - box.lo).cwiseProduct(t), rng.unit_normal(0, kPi, 0, 6.28)});
       }
       pts.push_back({box.centre(), Vec3(0, 0, 1)});
       if (soup.triangles.size() <= 600) check_against_oracle(soup, pts, name.c_str(), SkyFactorsMethod::exact);
@@ -407,4 +419,76 @@ BOOST_AUTO_TEST_CASE(degeneracy_corpus) {
     }
   }
   BOOST_TEST(loaded == 18u);
+}
+
+// A point 7.3e-9 m under a flat sheet of two overlapping triangles (the degeneracy corpus's
+// cgal_overlapping_triangles.off: their union is the unit square minus its lower-right quarter
+// triangle), its face tilted 0.42° below vertical: it sees only the sky between the horizon and
+// the sheet's edge, elevations below ~1e-7 rad. Independent reference: in each azimuth φ of the
+// face's front half the ray's xy path meets the union in intervals [t_a, t_b] (clipped against
+// each triangle); a direction of elevation e reaches z = 0 at horizontal distance H / tan e, so
+// it is visible where that distance lies outside the intervals; the elevation integrals are in
+// closed form (∫ n·ω cos e de and ∫ cos e de over each visible range, face plane included), the
+// azimuth integral a 2·10⁵-point midpoint rule (its error ~1e-9 relative at the kinks where the
+// nearest edge changes). Both agree to 1e-8 relative; the union oracle is 3 % off here (see
+// kOracleSliver).
+BOOST_AUTO_TEST_CASE(grazing_sliver_under_a_flat_sheet) {
+  const std::array<std::array<Vec2, 3>, 2> tris{{{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, {Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)}}};
+  TriangleSoup soup;
+  for (const auto& t : tris) add_triangle(soup, Vec3(t[0].x(), t[0].y(), 0), Vec3(t[1].x(), t[1].y(), 0), Vec3(t[2].x(), t[2].y(), 0));
+  const QueryPoint q{Vec3(0.39361954249904779, 0.90192179996149213, 0),
+                     Vec3(-0.10066490192229853, 0.9948938507220475, -0.0072665890505994365)};
+  const Vec3 p = q.position + kOffset * q.normal;  // where the method evaluates
+  const double h = -p.z();                         // the sheet lies h above p
+  const double sin_t = std::hypot(q.normal.x(), q.normal.y()), cos_t = q.normal.z(), az = std::atan2(q.normal.y(), q.normal.x());
+  // Parameter interval of the ray p + t (c, s) inside a counter-clockwise triangle, if any.
+  const auto inside = [&](const std::array<Vec2, 3>& t, double c, double sn, double& t0, double& t1) {
+    t0 = 0, t1 = 1e300;
+    for (int i = 0; i < 3; ++i) {
+      const Vec2 e = t[(i + 1) % 3] - t[i];
+      const double f0 = e.x() * (p.y() - t[i].y()) - e.y() * (p.x() - t[i].x()), df = e.x() * sn - e.y() * c;
+      if (df == 0) {
+        if (f0 < 0) return false;
+        continue;
+      }
+      (df > 0 ? t0 : t1) = df > 0 ? std::max(t0, -f0 / df) : std::min(t1, -f0 / df);
+    }
+    return t0 < t1;
+  };
+  constexpr int kSteps = 200000;
+  double svf = 0, exposure = 0;
+  for (int k = 0; k < kSteps; ++k) {
+    const double phi = az - kPi / 2 + kPi * (k + 0.5) / kSteps, w = kPi / kSteps;
+    const double c = std::cos(phi), sn = std::sin(phi), cos_d = std::cos(phi - az);
+    std::vector<std::pair<double, double>> iv;
+    for (const auto& t : tris) {
+      double t0, t1;
+      if (inside(t, c, sn, t0, t1)) iv.emplace_back(t0, t1);
+    }
+    std::sort(iv.begin(), iv.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& v : iv)
+      if (!merged.empty() && v.first <= merged.back().second) merged.back().second = std::max(merged.back().second, v.second);
+      else merged.push_back(v);
+    // Visible elevation ranges: beyond the last interval, in the gaps, and before the first.
+    std::vector<std::pair<double, double>> vis;
+    vis.emplace_back(0.0, merged.empty() ? kPi / 2 : std::atan(h / merged.back().second));
+    for (std::size_t i = 1; i < merged.size(); ++i) vis.emplace_back(std::atan(h / merged[i].first), std::atan(h / merged[i - 1].second));
+    if (!merged.empty() && merged.front().first > 0) vis.emplace_back(std::atan(h / merged.front().first), kPi / 2);
+    const double tan_plane = sin_t * cos_d / -cos_t;  // the face's plane: n·ω > 0 below it (cos_t < 0)
+    const double e_max = tan_plane > 0 ? std::atan(tan_plane) : 0.0;
+    const auto F = [&](double e) { return sin_t * cos_d * (e / 2 + std::sin(2 * e) / 4) + cos_t * std::sin(e) * std::sin(e) / 2; };
+    for (auto [e0, e1] : vis) {
+      e1 = std::min(e1, e_max);
+      if (e1 <= e0) continue;
+      svf += w * (F(e1) - F(e0)) / kPi;
+      exposure += w * (std::sin(e1) - std::sin(e0)) / (2 * kPi);
+    }
+  }
+  const Scene scene(soup);
+  const std::vector<QueryPoint> pts{q};
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::exact, 1);
+  BOOST_TEST(svf == 3.70215e-8, tt::tolerance(1e-5));  // the value the comment above cites
+  BOOST_TEST(run.factors[0].svf == svf, tt::tolerance(1e-8));
+  BOOST_TEST(run.factors[0].sky_exposure == exposure, tt::tolerance(1e-8));
 }

@@ -52,8 +52,8 @@ std::vector<QueryPoint> points_around(const std::vector<OrientedBox>& boxes, std
   std::vector<QueryPoint> pts;
   gen::Rng rng(seed);
   while (pts.size() < count) {
-    QueryPoint q{Vec3(rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)),
-                 unit_normal(rng.uniform(0, kPi / 2), rng.uniform(0, 6.28))};
+    QueryPoint q{Vec3{rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)},
+                 rng.unit_normal(0, kPi / 2, 0, 6.28)};
     if (pts.size() < horizontal) q.normal = Vec3(0, 0, 1);
     if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
       pts.push_back(q);
@@ -223,10 +223,10 @@ BOOST_AUTO_TEST_CASE(random_box_scenes_match_the_union_oracle) {
     std::vector<QueryPoint> pts;
     while (pts.size() < 8) {
       const bool ground = pts.size() < 4;
-      QueryPoint q{Vec3(rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 6)), Vec3(0, 0, 1)};
+      QueryPoint q{Vec3{rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 6)}, Vec3(0, 0, 1)};
       if (std::any_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
         continue;
-      if (!ground) q.normal = unit_normal(rng.uniform(0.05, kPi / 2), rng.uniform(0, 2 * kPi));
+      if (!ground) q.normal = rng.unit_normal(0.05, kPi / 2, 0, 2 * kPi);
       pts.push_back(q);
     }
     for (double off : {0.0, 0.05})

@@ -183,7 +183,7 @@ BOOST_AUTO_TEST_CASE(union_oracle_equals_single_box_on_random_boxes) {
     gen::Rng rng(1000 + seed);
     for (int k = 0; k < 4; ++k) {
       // Ground point outside the box footprint (skip if inside), and a tilted normal.
-      const Vec3 p(rng.uniform(-12, 12), rng.uniform(-12, 12), k < 2 ? 0.0 : rng.uniform(0, 8));
+      const Vec3 p{rng.uniform(-12, 12), rng.uniform(-12, 12), k < 2 ? 0.0 : rng.uniform(0, 8)};
       const OrientedBox& b = boxes[0];
       const double c = std::cos(-b.yaw_rad), s = std::sin(-b.yaw_rad);
       const Vec3 d = p - b.centre;

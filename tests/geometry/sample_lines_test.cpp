@@ -114,15 +114,15 @@ BOOST_AUTO_TEST_CASE(lines_of_random_triangle_soups) {
     gen::Rng rng(seed);
     TriangleSoup soup;
     for (int t = 0; t < 14; ++t) {
-      const Vec3 c(rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(0, 8));
-      add_triangle(soup, c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)),
-                   c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)),
-                   c + Vec3(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)));
+      const Vec3 c{rng.uniform(-8, 8), rng.uniform(-8, 8), rng.uniform(0, 8)};
+      const Vec3 a = c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)};
+      const Vec3 b = c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)};
+      add_triangle(soup, a, b, c + Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-3, 3)});
     }
     std::vector<QueryPoint> pts;
     for (int i = 0; i < 6; ++i)
-      pts.push_back({Vec3(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0, 5)),
-                     i == 0 ? Vec3(0, 0, 1) : unit_normal(rng.uniform(0, kPi), rng.uniform(0, 6.28))});
+      pts.push_back({Vec3{rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(0, 5)},
+                     i == 0 ? Vec3(0, 0, 1) : rng.unit_normal(0, kPi, 0, 6.28)});
     check_lines(soup, pts, "soup");
   }
 }

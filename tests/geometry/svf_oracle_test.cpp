@@ -63,7 +63,7 @@ std::vector<SingleBoxCase> single_box_cases(int seeds) {
     while (c.points.size() < 6) {
       const bool ground = c.points.size() < 3;
       QueryPoint q;
-      q.position = Vec3(rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 10));
+      q.position = Vec3{rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 10)};
       if (inside_footprint(c.box, q.position, 0.05)) continue;
       const double tilt = ground ? 0.0 : (c.points.size() == 5 ? kPi / 2 : rng.uniform(0.1, kPi / 2));
       const double az = rng.uniform(0, 2 * kPi);
@@ -204,7 +204,7 @@ BOOST_AUTO_TEST_CASE(random_multi_box_scenes_vs_union_oracle) {
     while (pts.size() < 6) {
       QueryPoint q;
       const bool ground = pts.size() < 3;
-      q.position = Vec3(rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 6));
+      q.position = Vec3{rng.uniform(-14, 14), rng.uniform(-14, 14), ground ? 0.0 : rng.uniform(0, 6)};
       if (std::any_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
         continue;
       const double tilt = ground ? 0.0 : rng.uniform(0.1, kPi / 2), az = rng.uniform(0, 2 * kPi);

@@ -239,7 +239,7 @@ std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::si
         default: p = Vec3(size + off, along, 0.05); break;
       }
     } else {
-      p = Vec3(rng.uniform(0, size), rng.uniform(0, size), 0.05);
+      p = Vec3{rng.uniform(0, size), rng.uniform(0, size), 0.05};
     }
     bool clear = true;
     for (const auto& b : city.boxes)

@@ -4,6 +4,7 @@
 // through our own uniform mapping, so results do not depend on the standard library's
 // distribution implementations).
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -24,6 +25,15 @@ class Rng {
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }  // [0, 1)
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }   // [lo, hi)
   std::uint64_t below(std::uint64_t n) { return static_cast<std::uint64_t>(uniform() * static_cast<double>(n)) % n; }
+  // A unit vector of tilt (from +z) then azimuth (from +x) drawn in that order.
+  Vec3 unit_normal(double tilt_lo, double tilt_hi, double az_lo, double az_hi) {
+    const double tilt = uniform(tilt_lo, tilt_hi);
+    const double az = uniform(az_lo, az_hi);
+    return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt));
+  }
+  // Callers draw several values in one expression only inside braces (Vec3{rng.uniform(),
+  // rng.uniform(), ...}: evaluated left to right), never as a function's arguments, whose order
+  // is unspecified (GCC and clang differ): the scenes would depend on the compiler.
  private:
   std::mt19937_64 engine_;
 };
