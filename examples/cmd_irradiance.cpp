@@ -43,6 +43,7 @@
 #include "examples/command_registry.h"
 #include "examples/demo_scene.h"
 #include "examples/point_job_args.h"
+#include "examples/provenance.h"
 #include "examples/sun_sky_options.h"
 #include "geometry/input_error.h"
 #include "io/csv_table.h"
@@ -85,6 +86,14 @@ struct IrradianceArgs {
 
 // The moments of --date/--step/--zone (lighting/moment_series.h): every step through the days,
 // at the middle of each step, with the sun by the SPA at --lat/--lon.
+// The files an irradiance run reads (for the provenance record).
+std::vector<std::pair<std::string, std::string>> input_files(const IrradianceArgs& a) {
+  auto inputs = a.job.input_files();
+  inputs.emplace_back("--times", a.times);
+  inputs.emplace_back("--weather", a.weather);
+  return inputs;
+}
+
 std::vector<SunMoment> generated_moments(const IrradianceArgs& a) {
   MomentSeriesSpec spec;
   std::tie(spec.first_date, spec.last_date) = parse_date_range(a.dates, "--date");
@@ -182,6 +191,7 @@ void run_sun_hours(const IrradianceArgs& a, const std::vector<SunMoment>& moment
     values[2][i] = r[i].sun_hours;
   }
   write_points_csv(a.job.out, table, columns, values);
+  write_provenance(a.job.out, input_files(a));
   if (!a.job.quiet) {
     double hours = 0;
     for (const SunMoment& m : moments) hours += m.hours;
@@ -223,6 +233,7 @@ void run_times(const IrradianceArgs& a) {
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
+  write_provenance(a.job.out, input_files(a));
   if (!a.job.quiet) {
     double hours = 0;
     for (const SunMoment& m : moments) hours += m.hours;
@@ -332,6 +343,7 @@ void run_weather(const IrradianceArgs& a) {
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
+  write_provenance(a.job.out, input_files(a));
   if (hourly) hourly->commit();
   // A terrain sheet without a ground material hides the ground from every point: say so when most
   // points that face the ground see none of it.
@@ -441,6 +453,7 @@ void run(const IrradianceArgs& a) {
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
+  write_provenance(a.job.out, input_files(a));
   if (!a.job.quiet) {
     const Spectrum& dn = sky.sun_direct_normal();
     const std::size_t n = r.size();

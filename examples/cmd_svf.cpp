@@ -24,6 +24,7 @@
 #include "examples/demo_scene.h"
 #include "examples/point_checks.h"
 #include "examples/point_job_args.h"
+#include "examples/provenance.h"
 #include "geometry/band_visibility.h"
 #include "geometry/input_error.h"
 #include "geometry/column_scene.h"
@@ -121,7 +122,11 @@ void run(const SvfArgs& a) {
     values[1][i] = factors[i].sky_exposure;
   }
   write_points_csv(a.job.out, table, {"svf", "sky_exposure"}, values);
-  if (!a.horizon.empty()) write_horizon(a, scene, table, opt);
+  write_provenance(a.job.out, a.job.input_files());
+  if (!a.horizon.empty()) {
+    write_horizon(a, scene, table, opt);
+    write_provenance(a.horizon, a.job.input_files());
+  }
   if (!a.job.quiet) {
     const std::size_t n = table.points.size();
     const double mean = n ? std::accumulate(values[0].begin(), values[0].end(), 0.0) / double(n) : 0.0;

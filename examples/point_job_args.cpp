@@ -55,11 +55,15 @@ void PointJobArgs::require_files(const std::string& command, const std::string& 
   if (meshes.empty()) throw InputError(command + ": at least one --mesh FILE is required" + alternative);
   if (points.empty()) throw InputError(command + ": --points FILE.csv is required");
   if (out.empty()) throw InputError(command + ": --out FILE.csv is required");
-  std::vector<std::pair<std::string, std::string>> inputs{{"--points", points}};
-  for (const std::string& m : meshes) inputs.emplace_back("--mesh", m);
-  check_output_file("--out", out, inputs);
+  check_output_file("--out", out, input_files());
   if (!std::isfinite(offset) || std::abs(offset) > 1000)
     throw InputError("--offset " + std::to_string(offset) + ": must be a distance in metres within [-1000, 1000]");
+}
+
+std::vector<std::pair<std::string, std::string>> PointJobArgs::input_files() const {
+  std::vector<std::pair<std::string, std::string>> inputs{{"--points", points}};
+  for (const std::string& m : meshes) inputs.emplace_back("--mesh", m);
+  return inputs;
 }
 
 PointsTable PointJobArgs::read_points(const std::vector<std::string>& out_columns) const {

@@ -42,6 +42,8 @@ class PointJobArgs {
   // `alternative` is appended to the --mesh message, e.g. " (or --demo)"), and checks --out
   // before any work (examples/point_checks.h: its folder, not an input file).
   void require_files(const std::string& command, const std::string& alternative = "") const;
+  // The input files: --points and every --mesh, as (flag, path) pairs.
+  std::vector<std::pair<std::string, std::string>> input_files() const;
   // Reads --points, checks that none of `out_columns` is already an input column, and applies
   // --offset (examples/point_checks.h).
   PointsTable read_points(const std::vector<std::string>& out_columns) const;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/support/cli_runner.h"
 
 namespace tt = boost::test_tools;
@@ -325,4 +327,26 @@ BOOST_AUTO_TEST_CASE(lod_selects_the_city_model_level) {
   r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv") + " --lod 2");
   BOOST_TEST(r.exit_code == 2, r.err);
   BOOST_TEST(r.err.find("applies to city models") != std::string::npos, r.err);
+}
+
+// Beside the CSV, <out>.provenance.json records the version, the command line as typed and each
+// input file with its size in bytes (the file sizes checked against the filesystem).
+BOOST_AUTO_TEST_CASE(provenance_beside_the_output) {
+  const fs::path d = skyband::test::test_folder("svf_cli_provenance");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "p.csv") << "x,y,z\n5,5,10\n";
+  const std::string cmd = "svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv");
+  const auto r = run_skyband(cmd + " --quiet");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  const std::string text = slurp(d / "o.csv.provenance.json");
+  const nlohmann::json j = nlohmann::json::parse(text);
+  BOOST_TEST(j.at("output").get<std::string>() == (d / "o.csv").string());
+  BOOST_TEST(j.at("command_line").get<std::string>().find("svf --mesh") != std::string::npos);
+  BOOST_TEST(!j.at("skyband_version").get<std::string>().empty());
+  BOOST_TEST_REQUIRE(j.at("inputs").size() == 2u);
+  BOOST_TEST(j["inputs"][0]["flag"].get<std::string>() == "--points");
+  BOOST_TEST(j["inputs"][0]["bytes"].get<std::uintmax_t>() == fs::file_size(d / "p.csv"));
+  BOOST_TEST(j["inputs"][1]["path"].get<std::string>() == (d / "cube.obj").string());
+  BOOST_TEST(j["inputs"][1]["bytes"].get<std::uintmax_t>() == fs::file_size(d / "cube.obj"));
+  BOOST_TEST(j.at("written_utc").get<std::string>().ends_with("Z"));
 }
