@@ -18,19 +18,33 @@ std::string lower(std::string s) {
   return s;
 }
 
+}  // namespace
+
+std::vector<bool> ground_triangle_mask(const TriangleSoup& soup, const std::vector<std::string>& ground_materials) {
+  std::vector<bool> is_ground_material(soup.material_names.size(), false);
+  for (std::size_t m = 0; m < soup.material_names.size(); ++m)
+    for (const std::string& g : ground_materials)
+      is_ground_material[m] = is_ground_material[m] || lower(soup.material_names[m]) == lower(g);
+  std::vector<bool> mask(soup.triangles.size(), false);
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    const std::uint32_t m = t < soup.triangle_material.size() ? soup.triangle_material[t] : 0;
+    mask[t] = m < is_ground_material.size() && is_ground_material[m];
+  }
+  return mask;
+}
+
+namespace {
+
 // The model's non-ground triangles mirrored in z = 0: a point's lower hemisphere in the model is
 // the upper hemisphere of the mirrored point in this scene.
 TriangleSoup mirrored_non_ground(const TriangleSoup& soup, const std::vector<std::string>& ground, std::size_t& ground_count) {
-  std::vector<bool> is_ground(soup.material_names.size(), false);
-  for (std::size_t m = 0; m < soup.material_names.size(); ++m)
-    for (const std::string& g : ground) is_ground[m] = is_ground[m] || lower(soup.material_names[m]) == lower(g);
+  const std::vector<bool> is_ground = ground_triangle_mask(soup, ground);
   TriangleSoup out;
   out.vertices.reserve(soup.vertices.size());
   for (const Vec3& v : soup.vertices) out.vertices.push_back(Vec3(v.x(), v.y(), -v.z()));
   ground_count = 0;
   for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
-    const std::uint32_t m = soup.triangle_material.empty() ? 0 : soup.triangle_material[t];
-    if (m < is_ground.size() && is_ground[m]) {
+    if (is_ground[t]) {
       ++ground_count;
       continue;
     }

@@ -42,6 +42,9 @@ namespace skyband {
 // 3dfier, CityGML and CityJSON and the plain words.
 std::vector<std::string> default_ground_materials();
 
+// Per triangle of `soup`, whether its material is one of `ground_materials` (without case).
+std::vector<bool> ground_triangle_mask(const TriangleSoup& soup, const std::vector<std::string>& ground_materials);
+
 struct ClimateIrradiationOptions {
   VisibilityOptions visibility;
   SkyFactorsMethod method = SkyFactorsMethod::automatic;
