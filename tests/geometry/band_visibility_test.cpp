@@ -82,8 +82,8 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
   for (int scene_id = 0; scene_id < 5; ++scene_id) {
     TriangleSoup s;
     for (int b = 0; b < 40; ++b) {
-      const Vec3 lo(u(rng) * 100, u(rng) * 100, 0);
-      append_box(s, lo, lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)));
+      const Vec3 lo{u(rng) * 100, u(rng) * 100, 0};
+      append_box(s, lo, lo + Vec3{2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)});
     }
     const Scene scene(s);
     // Without refinement: which edges are recorded as refinement breakpoints depends on the
@@ -95,8 +95,8 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
     naive.accelerate = false;
     BandVisibility a(scene, fast), b(scene, naive);
     for (int i = 0; i < 20; ++i) {
-      const QueryPoint q{Vec3(u(rng) * 100, u(rng) * 100, u(rng) * 5),
-                         Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng)).normalized()};
+      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5},
+                         Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
       VisibilityCache::PointResult ra, rb;
       a.compute(q, ra);
       b.compute(q, rb);
@@ -122,8 +122,8 @@ BOOST_AUTO_TEST_CASE(shadow_test_equals_full_line) {
     TriangleSoup s;
     std::vector<Vec3> corners;
     for (int b = 0; b < 40; ++b) {
-      const Vec3 lo(u(rng) * 100, u(rng) * 100, 0);
-      const Vec3 hi = lo + Vec3(2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng));
+      const Vec3 lo{u(rng) * 100, u(rng) * 100, 0};
+      const Vec3 hi = lo + Vec3{2 + 10 * u(rng), 2 + 10 * u(rng), 1 + 30 * u(rng)};
       append_box(s, lo, hi);
       corners.push_back(hi);
       corners.push_back(Vec3(lo.x(), hi.y(), hi.z()));
@@ -134,9 +134,9 @@ BOOST_AUTO_TEST_CASE(shadow_test_equals_full_line) {
     naive.accelerate = false;
     BandVisibility a(scene, fast), b(scene, naive);
     for (int i = 0; i < 150; ++i) {
-      const QueryPoint q{Vec3(u(rng) * 100, u(rng) * 100, u(rng) * 5),
-                         Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng)).normalized()};
-      Vec3 dir = i % 2 ? Vec3(u(rng) - 0.5, u(rng) - 0.5, 0.05 + u(rng)).normalized()
+      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5},
+                         Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
+      Vec3 dir = i % 2 ? Vec3{u(rng) - 0.5, u(rng) - 0.5, 0.05 + u(rng)}.normalized()
                        : (corners[i % corners.size()] - q.position).normalized();
       if (dir.dot(q.normal) <= 0) dir = -dir;
       if (dir.z() < 0) continue;

@@ -17,8 +17,8 @@ BOOST_AUTO_TEST_CASE(orientation_filter_agrees_with_exact) {
   std::uniform_real_distribution<double> u(-100.0, 100.0);
   int decided_zero = 0;
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
-    Vec3 d(u(rng), u(rng), u(rng));
+    const Vec3 a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)}, c{u(rng), u(rng), u(rng)};
+    Vec3 d{u(rng), u(rng), u(rng)};
     if (i % 2 == 1) {
       // A point on the plane of a, b, c up to rounding: d = a + s(b − a) + t(c − a), then nudged
       // by 0, ±1 ulp in one coordinate.
@@ -55,8 +55,8 @@ BOOST_AUTO_TEST_CASE(dot_sign_filter_agrees_with_exact) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 m(u(rng), u(rng), u(rng));
-    Vec3 d(1e3 * u(rng), 1e3 * u(rng), 1e3 * u(rng));
+    const Vec3 m{u(rng), u(rng), u(rng)};
+    Vec3 d{1e3 * u(rng), 1e3 * u(rng), 1e3 * u(rng)};
     if (i % 2 == 1) {
       // d nearly perpendicular to m: remove its m component, then nudge by an ulp.
       d = d - (m.dot(d) / m.squaredNorm()) * m;
@@ -79,16 +79,16 @@ BOOST_AUTO_TEST_CASE(orient2d_filter_agrees_with_exact) {
   int zeros = 0;
   for (int i = 0; i < 20000; ++i) {
     const Vec3 shift(4e5, 6e6, 0);
-    const Vec3 a = shift + Vec3(u(rng), u(rng), 0), b = shift + Vec3(u(rng), u(rng), 0);
-    Vec3 c = shift + Vec3(u(rng), u(rng), u(rng));
+    const Vec3 a = shift + Vec3{u(rng), u(rng), 0}, b = shift + Vec3{u(rng), u(rng), 0};
+    Vec3 c = shift + Vec3{u(rng), u(rng), u(rng)};
     if (i % 2 == 1) {
       c = a + (u(rng) / 50) * (b - a);
       if (i % 4 == 1) c[i % 8 < 4 ? 0 : 1] = std::nextafter(c[i % 8 < 4 ? 0 : 1], 1e300);
     }
     Vec3 ae = a, be = b;
     if (i % 16 == 2) {  // exactly collinear: a step of quarter metres and its double, all representable
-      const Vec3 step(0.25 * double(int(u(rng))), 0.25 * double(int(u(rng))), 0);
-      ae = shift + Vec3(double(int(u(rng))), double(int(u(rng))), 0);
+      const Vec3 step{0.25 * double(int(u(rng))), 0.25 * double(int(u(rng))), 0};
+      ae = shift + Vec3{double(int(u(rng))), double(int(u(rng))), 0};
       be = ae + step;
       c = ae + 2.0 * step;
     }

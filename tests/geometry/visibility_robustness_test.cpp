@@ -142,9 +142,9 @@ BOOST_AUTO_TEST_CASE(degenerate_and_real_corpora_give_finite_results) {
       std::mt19937_64 rng(5);
       std::uniform_real_distribution<double> u(0, 1);
       for (int i = 0; i < 12; ++i) {
-        const Vec3 t(u(rng), u(rng), u(rng));
+        const Vec3 t{u(rng), u(rng), u(rng)};
         const Vec3 p = box.lo + (box.hi - box.lo).cwiseProduct(t);
-        pts.push_back({p, Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.2).normalized()});
+        pts.push_back({p, Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.2}.normalized()});
       }
       const VisibilityCache c = compute_visibility(scene, pts, {}, 1);
       for (std::size_t i = 0; i < pts.size(); ++i) {

@@ -43,11 +43,11 @@ RandomBlock random_block(std::uint64_t seed, int boxes, double box_span_m, int p
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   for (int i = 0; i < boxes; ++i) {
-    const Vec3 lo(box_span_m * (u(rng) - 0.5), box_span_m * (u(rng) - 0.5), 0);
-    append_box(b.soup, lo, lo + Vec3(3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)));
+    const Vec3 lo{box_span_m * (u(rng) - 0.5), box_span_m * (u(rng) - 0.5), 0};
+    append_box(b.soup, lo, lo + Vec3{3 + 8 * u(rng), 3 + 8 * u(rng), 2 + 20 * u(rng)});
   }
   for (int i = 0; i < points; ++i) {
-    const Vec3 n(u(rng) - 0.5, u(rng) - 0.5, u(rng));
+    const Vec3 n{u(rng) - 0.5, u(rng) - 0.5, u(rng)};
     const double x = point_span_m * (u(rng) - 0.5), y = point_span_m * (u(rng) - 0.5);
     b.points.push_back(at(x, y, 6 * u(rng), n));
   }
@@ -94,10 +94,13 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
 
 // CIE type 5 is the sky of uniform luminance (a = 0, c = 0, e = 0: L = L_z everywhere above the
 // horizon), so E_sky = π·L_z·SVF exactly, with the SVF of the same visibility: an identity for any
-// occlusion. Random points around random boxes, by both methods. Tolerance 2e-5: a constant is
-// interpolated exactly by the grid. Band method: the Gauss–Legendre pieces integrate sin²α to
-// ~1e-13; what remains is the grid's float storage (~6e-8 relative) and the interval ends stored
-// as float. Exact horizon: the SVF is exact, the fan's quadrature within ~3e-6 (geometry/sky_fan.h).
+// occlusion. Random points around random boxes, by both methods. Tolerance 1e-5 of the open
+// sky's π·L_z (the quadrature's error is set by the shape of the visible region over the whole
+// hemisphere, not by the point's share of it): a constant is interpolated exactly by the grid.
+// Band method: the Gauss–Legendre pieces integrate sin²α to ~1e-13; what remains is the grid's
+// float storage (~6e-8 relative) and the interval ends stored as float. Exact horizon: the SVF
+// is exact, the fan's quadrature within ~3e-6 relative (geometry/sky_fan.h) — here at most
+// 1.2e-6 of π·L_z (1.0e-4 W·m⁻² at a point of SVF 0.041, 2.8e-5 of its own value).
 BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
   const RandomBlock block = random_block(5, 12, 60, 40, 70);
   const Scene scene(block.soup);
@@ -112,7 +115,8 @@ BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
     const auto r = compute_point_irradiance(scene, pts, sky, opt);
     int occluded = 0;
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      BOOST_TEST(r[i].sky_W_m2 == kPi * lz * r[i].svf, tt::tolerance(2e-5));
+      BOOST_TEST(std::abs(r[i].sky_W_m2 - kPi * lz * r[i].svf) <= 1e-5 * kPi * lz,
+                 "point " << i << ": " << r[i].sky_W_m2 << " W/m2 against pi L svf " << kPi * lz * r[i].svf);
       occluded += r[i].svf < (1 + pts[i].normal.z()) / 2 - 1e-3;
     }
     BOOST_TEST(occluded > 10);  // the identity was tested on occluded points, not only open ones
