@@ -29,4 +29,8 @@ struct CommandRegistration {
 // The command line as typed (for provenance in output headers).
 const std::string& invocation();
 
+// After a command-line parse error: " (did you mean --points?)" for a flag or command within a
+// few edits of a known one, else "; see skyband <command> --help".
+std::string did_you_mean(CLI::App& app, int argc, char** argv);
+
 }  // namespace skyband::cli

@@ -350,3 +350,21 @@ BOOST_AUTO_TEST_CASE(provenance_beside_the_output) {
   BOOST_TEST(j["inputs"][1]["bytes"].get<std::uintmax_t>() == fs::file_size(d / "cube.obj"));
   BOOST_TEST(j.at("written_utc").get<std::string>().ends_with("Z"));
 }
+
+// Command-line errors have the form of every other error — one line "skyband: error: ...",
+// exit code 2 — with a suggestion for a flag or command within a few edits of a known one.
+BOOST_AUTO_TEST_CASE(parse_errors_suggest_the_flag) {
+  auto r = run_skyband("svf --pionts p.csv");
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.starts_with("skyband: error: "), r.err);
+  BOOST_TEST(r.err.find("(did you mean --points?)") != std::string::npos, r.err);
+  BOOST_TEST(std::count(r.err.begin(), r.err.end(), '\n') == 1, r.err);
+  r = run_skyband("svff");
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("(did you mean 'svf'?)") != std::string::npos, r.err);
+  r = run_skyband("svf --threads abc");
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("see skyband svf --help") != std::string::npos, r.err);
+  r = run_skyband("svf --help");
+  BOOST_TEST(r.exit_code == 0);
+}
