@@ -7,7 +7,7 @@
 //   skyband irradiance --demo --sun-altitude DEG [--sun-azimuth DEG]
 //   skyband irradiance --mesh ... --points ... --out ... --times TIMES.csv [--lat DEG --lon DEG] [sky options]
 //   skyband irradiance --mesh ... --points ... --out ... --weather FILE.epw [--from MM-DD --to MM-DD]
-//                      [--albedo R] [--ground-materials NAME,...]
+//                      [--albedo R] [--ground-materials NAME,...] [--sun-at start|middle|end]
 //
 // Points as for `skyband svf` (metres, z up; normals default to +z). Per point, on the plane of
 // its normal (lighting/point_irradiance.h): the sky through the exact visible α-intervals of the
@@ -76,6 +76,7 @@ struct IrradianceArgs {
   bool demo = false;
   std::string weather, from, to, hourly;
   std::optional<double> albedo;
+  std::string sun_at;  // --sun-at start|middle|end
   std::vector<std::string> ground_materials;
   CLI::Option* o_ground = nullptr;
   std::string dates, zone;  // --date FIRST[:LAST], --zone NAME
@@ -307,6 +308,8 @@ void run_weather(const IrradianceArgs& a) {
   if (const auto w = weather_timing_warning(series, weather_timing(series))) std::fprintf(stderr, "skyband: warning: %s\n", w->c_str());
   WeatherHoursOptions hopt;
   hopt.albedo = a.albedo;
+  if (a.sun_at == "start") hopt.sun_fraction = 0.0;
+  else if (a.sun_at == "end") hopt.sun_fraction = 1.0;
   WeatherHoursReport hrep;
   const std::vector<WeatherHour> hours = weather_hours(series, hopt, &hrep);
 
@@ -415,8 +418,8 @@ void run(const IrradianceArgs& a) {
     a.job.require_files("irradiance");
     return run_weather(a);
   }
-  if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count() || !a.hourly.empty())
-    throw InputError("--from, --to, --albedo, --ground-materials and --hourly need --weather");
+  if (!a.from.empty() || !a.to.empty() || a.albedo || a.o_ground->count() || !a.hourly.empty() || !a.sun_at.empty())
+    throw InputError("--from, --to, --albedo, --ground-materials, --hourly and --sun-at need --weather");
   if (!a.times.empty() && !a.dates.empty()) throw InputError("--times and --date: give one of them");
   if (a.dates.empty() && (a.o_step->count() || !a.zone.empty()))
     throw InputError(a.zone.empty() ? "--step needs --date" : "--zone needs --date");
@@ -496,6 +499,10 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
                   "NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
   cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
   cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
+  cmd->add_option("--sun-at", args->sun_at,
+                  "With --weather: where in each record's interval the sun is placed: middle (default, for values\n"
+                  "that are means over the interval, as EPW's), end or start (for instantaneous values)")
+      ->check(CLI::IsMember({"start", "middle", "end"}));
   cmd->add_option("--albedo", args->albedo, "With --weather: ground reflectance [0, 1] (default: the file's, else 0.2)");
   args->o_ground = cmd->add_option("--ground-materials", args->ground_materials,
                                    "With --weather: material names (any case) of the triangles that are ground and hide no "

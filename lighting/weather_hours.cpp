@@ -24,6 +24,8 @@ std::vector<WeatherHour> weather_hours(const WeatherSeries& series, const Weathe
                                        WeatherHoursReport* report) {
   if (options.albedo && !(*options.albedo >= 0 && *options.albedo <= 1))
     throw InputError("--albedo " + std::to_string(*options.albedo) + ": must be in [0, 1]");
+  if (!(options.sun_fraction >= 0 && options.sun_fraction <= 1))
+    throw InputError("--sun-at " + std::to_string(options.sun_fraction) + ": the sun's place in the interval must be in [0, 1]");
   WeatherHoursReport rep;
   std::vector<WeatherHour> out;
   out.reserve(series.records.size());
@@ -34,9 +36,10 @@ std::vector<WeatherHour> weather_hours(const WeatherSeries& series, const Weathe
   for (const WeatherRecord& r : series.records) {
     WeatherHour h;
     h.hours = r.interval_hours;
-    // The sun at the middle of the interval, local standard time of the file's zone.
-    const double mid = r.mid_hour();
-    const double minutes = std::round(mid * 60.0 * 1e6) / 1e6;  // (exact for the usual half hours)
+    // The sun at the chosen fraction of the interval (the middle by default), local standard
+    // time of the file's zone; hour 24's end is the next day's 00:00 (24·60 minutes of the day).
+    const double at = r.hour - (1.0 - options.sun_fraction) * r.interval_hours;
+    const double minutes = std::round(at * 60.0 * 1e6) / 1e6;  // (exact for the usual half hours)
     spa.time = LocalDateTime{r.year, r.month, r.day, int(minutes / 60), 0, 0.0, series.location.time_zone_hours};
     spa.time.minute = int(minutes - 60.0 * spa.time.hour);
     spa.time.second = 60.0 * (minutes - 60.0 * spa.time.hour - spa.time.minute);

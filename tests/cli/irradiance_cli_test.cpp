@@ -314,6 +314,8 @@ BOOST_AUTO_TEST_CASE(bad_weather_input) {
       {base + " --weather " + q(d / "short.epw"), "short.epw"},
       {base + " --albedo 0.3 --sun-altitude 30", "--weather"},
       {base + " --weather " + q(chicago) + " --times " + q(d / "pts.csv"), "--times"},
+      {base + " --weather " + q(chicago) + " --sun-at noon", "--sun-at"},
+      {base + " --sun-at end --sun-altitude 30", "--weather"},
   }, d / "out.csv");
 }
 

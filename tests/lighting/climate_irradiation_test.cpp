@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
 #include <vector>
 
+#include "geometry/input_error.h"
 #include "geometry/scene.h"
 #include "io/epw_reader.h"
 #include "lighting/climate_irradiation.h"
@@ -171,4 +173,30 @@ BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_threads) {
     BOOST_TEST(a.points[i].sun_Wh_m2 == b.points[i].sun_Wh_m2);
     BOOST_TEST(a.points[i].ground_Wh_m2 == b.points[i].ground_Wh_m2);
   }
+}
+
+// --sun-at: the sun at the end of an hour (fraction 1) is the sun at the start of the next one
+// (fraction 0) — the same instant, also across midnight (hour 24's end is the next day's 00:00)
+// wherever both records are of the same year; the default, the middle, is neither. Out-of-range fractions are errors naming the flag.
+BOOST_AUTO_TEST_CASE(sun_placed_within_the_interval) {
+  const WeatherSeries series = read_epw(weather("USA_IL_Chicago-OHare.725300_TMY3.epw"));
+  WeatherHoursOptions start, end;
+  start.sun_fraction = 0.0;
+  end.sun_fraction = 1.0;
+  const std::vector<WeatherHour> s = weather_hours(series, start), e = weather_hours(series, end), m = weather_hours(series, {});
+  BOOST_TEST_REQUIRE(s.size() == 8760u);
+  double worst = 0;
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k + 1 < s.size(); ++k) {
+    if (series.records[k].year != series.records[k + 1].year) continue;  // a typical year's months come from different years
+    worst = std::max(worst, (e[k].sun_dir - s[k + 1].sun_dir).norm());
+    ++compared;
+  }
+  BOOST_TEST(compared > 8700u);
+  BOOST_TEST(worst < 1e-9);  // one instant computed from two dates: SPA rounding only
+  BOOST_TEST((m[12].sun_dir - s[12].sun_dir).norm() > 0.01);  // half an hour apart: ~0.13 rad
+  WeatherHoursOptions bad;
+  bad.sun_fraction = 1.5;
+  BOOST_CHECK_EXCEPTION(weather_hours(series, bad), InputError,
+                        [](const InputError& x) { return std::string(x.what()).starts_with("--sun-at"); });
 }
