@@ -103,9 +103,9 @@ std::optional<std::string> weather_timing_warning(const WeatherSeries& series, c
   std::string looks;
   if (half_hour)
     looks = earlier ? "about half an hour suggests instantaneous values at the end of each hour, or means centred on "
-                      "the hour, stored as hour-ending means"
+                      "the hour, stored as hour-ending means (--sun-at end places the sun at each hour's end)"
                     : "about half an hour suggests instantaneous values at the start of each hour stored as "
-                      "hour-ending means";
+                      "hour-ending means (--sun-at start places the sun at each hour's start)";
   else
     looks = earlier ? "the data look as if they were in a time zone west of " + zone +
                           " or labelled by the start of each hour instead of its end"
