@@ -12,6 +12,7 @@
 // ground triangles, where the ground is the plane of its lowest z). Written atomically, with a
 // provenance record beside it; the counts of nodes left out go to stderr.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -46,7 +47,7 @@ std::string shortest(double v) {
 void run_grid(const GridArgs& a) {
   if (a.meshes.empty()) throw InputError("points grid: at least one --mesh FILE is required");
   if (a.out.empty()) throw InputError("points grid: --out FILE.csv is required");
-  if (!(a.spacing > 0)) throw InputError("points grid: --spacing S (metres, > 0) is required");
+  if (!std::isfinite(a.spacing) || !(a.spacing > 0)) throw InputError("points grid: --spacing S (metres, > 0) is required");
   std::vector<std::pair<std::string, std::string>> inputs;
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
   check_output_file("--out", a.out, inputs);

@@ -43,9 +43,10 @@ void for_triangles_over(const Scene& scene, double x, double y, double z_min, st
 }  // namespace
 
 GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground, const GroundGridOptions& o) {
+  // Finiteness first: an ordered comparison with a NaN raises FE_INVALID (tests/fp_traps.cpp).
   const double s = o.spacing_m;
-  if (!(s > 0) || !std::isfinite(s)) throw InputError("--spacing " + number(s) + ": must be a positive distance in metres");
-  if (!(o.height_m >= 0) || !std::isfinite(o.height_m) || o.height_m > 10000)
+  if (!std::isfinite(s) || !(s > 0)) throw InputError("--spacing " + number(s) + ": must be a positive distance in metres");
+  if (!std::isfinite(o.height_m) || !(o.height_m >= 0) || o.height_m > 10000)
     throw InputError("--height " + number(o.height_m) + ": must be a height in metres within [0, 10000]");
   const auto& soup = scene.soup();
   if (soup.triangles.empty()) throw InputError("the model has no triangles: no ground to put points on");
