@@ -25,15 +25,19 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
 
 #include "examples/command_registry.h"
+#include "examples/obstructed_fisheye.h"
 #include "examples/sun_sky_options.h"
 #include "geometry/input_error.h"
+#include "geometry/scene.h"
 #include "io/exr_writer.h"
+#include "io/mesh_reader.h"
 #include "io/png_writer.h"
 #include "lighting/colour.h"
 #include "lighting/sky_model.h"
@@ -43,6 +47,8 @@ namespace {
 
 struct SkyOptions {
   SunSkyOptions sun_sky;
+  std::vector<double> at, normal;   // --at X,Y,Z, --normal NX,NY,NZ: the fisheye of one point of --mesh
+  std::vector<std::string> meshes;
   std::string out;
   int size = 512;
   double exposure = 0;
@@ -87,6 +93,23 @@ void run_sky(const SkyOptions& o) {
   }
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))
     throw InputError("--exposure " + fmt(o.exposure) + ": must be finite and > 0");
+  // --at: the point whose obstructed sky the fisheye shows.
+  std::optional<QueryPoint> at;
+  if (!o.at.empty() || !o.normal.empty() || !o.meshes.empty()) {
+    if (o.at.size() != 3) throw InputError("--at: give the point as X,Y,Z (metres, the model's coordinates)");
+    if (o.meshes.empty()) throw InputError("--at needs --mesh FILE (the model the point sees)");
+    if (o.out.empty()) throw InputError("--at needs --out FILE.exr (the fisheye of what the point sees)");
+    Vec3 n(0, 0, 1);
+    if (!o.normal.empty()) {
+      if (o.normal.size() != 3) throw InputError("--normal: give the face's normal as NX,NY,NZ");
+      n = Vec3(o.normal[0], o.normal[1], o.normal[2]);
+      if (!(n.norm() > 0) || !std::isfinite(n.norm())) throw InputError("--normal: must be a finite, non-zero vector");
+      n.normalize();
+    }
+    const Vec3 p(o.at[0], o.at[1], o.at[2]);
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) throw InputError("--at: coordinates must be finite");
+    at = QueryPoint{p, n};
+  }
 
   const Vec3 sun_dir = sun.direction();
   const SkyModel sky(ap, sun_dir, spec);
@@ -142,7 +165,42 @@ void run_sky(const SkyOptions& o) {
                 {"luminance", "cd m-2"}};
 
   // --- image -------------------------------------------------------------------------------
-  if (!exr_path.empty()) {
+  if (at) {
+    TriangleSoup soup;
+    for (const std::string& file : o.meshes) {
+      MeshReadReport report;
+      soup.append(read_mesh(file, &report));
+      if (!o.json) std::fprintf(stderr, "%s\n", report.summary().c_str());
+    }
+    const Scene scene(std::move(soup));
+    Spectrum l;
+    const ObstructedFisheye f = render_obstructed_fisheye(
+        scene, *at, o.size,
+        [&](const Vec3& d) {
+          sky.radiance_into(d, l);
+          return spectrum_to_linear_srgb(l);
+        },
+        o.o_exposure->count() ? o.exposure : 0.0);
+    const std::vector<ImageLayer> layers{{"sky", f.sky_rgb}, {"visible", f.visible_rgb}};
+    const std::map<std::string, std::string> attrs = {
+        {"skyband_version", SKYBAND_VERSION},
+        {"skyband_command", invocation()},
+        {"skyband_point", "x=" + fmt(at->position.x()) + " y=" + fmt(at->position.y()) + " z=" + fmt(at->position.z()) +
+                              " normal=" + fmt(at->normal.x()) + "," + fmt(at->normal.y()) + "," + fmt(at->normal.z())},
+        {"skyband_sky", sky.describe()},
+        {"skyband_layers", "sky: linear sRGB radiance (W m-2 sr-1, as the open-sky fisheye) where the point sees the sky, 0 "
+                           "where the scene or its own face hides it; visible: 1 or 0"},
+        {"skyband_projection", "equi-angular fisheye: radius proportional to zenith angle, zenith at centre, horizon on "
+                               "the inscribed circle, north up, east left (seen from below)"}};
+    write_exr(exr_path, o.size, o.size, layers, attrs, o.half ? ExrPixelType::Half : ExrPixelType::Float);
+    write_png_rgb8(png_path, o.size, o.size, f.picture);
+    j["point"] = {{"position", {at->position.x(), at->position.y(), at->position.z()}},
+                  {"normal", {at->normal.x(), at->normal.y(), at->normal.z()}},
+                  {"svf", f.svf},
+                  {"sky_exposure", f.sky_exposure},
+                  {"visible_fraction_of_fisheye_pixels", f.sky_pixels ? double(f.visible_pixels) / double(f.sky_pixels) : 0.0}};
+    j["image"] = {{"exr", exr_path.string()}, {"png", png_path.string()}, {"size_px", o.size}};
+  } else if (!exr_path.empty()) {
     const int n = o.size;
     ImageLayer layer{"sky", std::vector<float>(static_cast<std::size_t>(n) * static_cast<std::size_t>(n) * 3, 0.0f)};
     Spectrum l;
@@ -191,6 +249,9 @@ void run_sky(const SkyOptions& o) {
   std::printf("          global horizontal %.0f lx\n", luminous(global));
   std::printf("atmosphere tau_R(550) %.4f, aod550 %g, alpha %g, ozone %g DU\n", tau_r[grid_index(550)], ap.aod550,
               ap.angstrom_alpha, ap.ozone_du);
+  if (at)
+    std::printf("point     svf %.6f, sky exposure %.6f (the fisheye shows what it sees; the red line is its horizon)\n",
+                j["point"]["svf"].get<double>(), j["point"]["sky_exposure"].get<double>());
   if (!exr_path.empty()) std::printf("wrote     %s and %s\n", exr_path.string().c_str(), png_path.string().c_str());
 }
 
@@ -204,6 +265,10 @@ CLI::App* setup_sky(CLI::App& app) {
       "Fisheye (--out): equi-angular, zenith at the centre, north up, east left (sky seen from below).");
   o->sun_sky.add_to(sub);
   sub->add_option("--out", o->out, "Write an HDR fisheye FILE.exr and a tone-mapped FILE.png beside it");
+  sub->add_option("--at", o->at, "With --mesh: the fisheye of what this point X,Y,Z sees (hidden sky grey, its horizon red, N/E/S/W)")
+      ->delimiter(',');
+  sub->add_option("--normal", o->normal, "With --at: the face's normal NX,NY,NZ (default 0,0,1)")->delimiter(',');
+  sub->add_option("--mesh", o->meshes, "With --at: mesh or city model file; repeat for several")->check(CLI::ExistingFile);
   sub->add_option("--size", o->size, "Fisheye image size in pixels (default 512)");
   o->o_exposure = sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic, log-average key 0.18)");
   sub->add_flag("--half", o->half, "Store the EXR as half floats (default 32-bit float)");

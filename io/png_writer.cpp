@@ -52,8 +52,16 @@ void write_png_srgb(const std::filesystem::path& path, int width, int height, st
   if (rgb.size() != n) throw InputError(where + ": " + std::to_string(rgb.size()) + " values, expected " + std::to_string(n));
   if (!(exposure > 0) || !std::isfinite(exposure)) throw InputError(where + ": exposure " + std::to_string(exposure) + " must be finite and > 0");
   check_finite(rgb, where);
-  std::vector<png_byte> bytes(n);
-  for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<png_byte>(std::lround(255.0 * tone_map_channel(rgb[i], exposure)));
+  std::vector<std::uint8_t> bytes(n);
+  for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<std::uint8_t>(std::lround(255.0 * tone_map_channel(rgb[i], exposure)));
+  write_png_rgb8(path, width, height, bytes);
+}
+
+void write_png_rgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> bytes) {
+  const std::string where = "PNG '" + path.string() + "'";
+  if (width <= 0 || height <= 0) throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
+  if (bytes.size() != n) throw InputError(where + ": " + std::to_string(bytes.size()) + " bytes, expected " + std::to_string(n));
   write_atomically(path, [&](const std::filesystem::path& temp) {
     png_image image{};
     image.version = PNG_IMAGE_VERSION;

@@ -29,6 +29,9 @@ double auto_exposure(std::span<const float> rgb, double key = 0.18);
 
 void write_png_srgb(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, double exposure);
 
+// 8-bit RGB as it is (display values, e.g. tone-mapped pixels with drawings over them), atomically.
+void write_png_rgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgb);
+
 struct PngImage {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgb;  // 8-bit sRGB, interleaved, top row first

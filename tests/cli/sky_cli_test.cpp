@@ -191,3 +191,39 @@ BOOST_AUTO_TEST_CASE(out_folder_name_too_long_exits_2) {
   BOOST_TEST(r.err.starts_with("skyband: error: --out '" + folder + "/aaaa"), r.err);
   BOOST_TEST(r.err.find("cannot be used: File name too long") != std::string::npos, r.err);
 }
+
+// --at X,Y,Z --mesh: the fisheye of what one point sees. On the cube's roof every pixel of the
+// circle is sky (visible fraction 1, SVF 1); on its east wall, facing east, exactly the western
+// half of the pixels lies behind the face (the pixel grid is symmetric about the meridian) and
+// nothing in front is hidden: fraction 0.5, SVF 0.5 (an open vertical face). A point on the
+// ground 5 m east of the cube sees its 10 m wall up to atan(10/5) = 63.4° in the west: red
+// horizon pixels appear, and the picture is written beside the EXR.
+BOOST_AUTO_TEST_CASE(fisheye_of_a_point_in_a_model) {
+  const fs::path d = work_dir();
+  skyband::test::write_cube_obj(d / "cube.obj");
+  const std::string mesh = " --mesh '" + (d / "cube.obj").string() + "' --size 128 --sun-altitude 30 --sun-azimuth 180";
+  json j = run_json("--at 5,5,10 --out '" + (d / "roof.exr").string() + "'" + mesh);
+  BOOST_TEST(j["point"]["svf"].get<double>() == 1.0, tt::tolerance(1e-12));
+  BOOST_TEST(j["point"]["visible_fraction_of_fisheye_pixels"].get<double>() == 1.0);
+  j = run_json("--at 10,5,5 --normal 1,0,0 --out '" + (d / "wall.exr").string() + "'" + mesh);
+  BOOST_TEST(j["point"]["svf"].get<double>() == 0.5, tt::tolerance(1e-9));
+  BOOST_TEST(j["point"]["visible_fraction_of_fisheye_pixels"].get<double>() == 0.5);
+  j = run_json("--at 15,5,0 --out '" + (d / "ground.exr").string() + "'" + mesh);
+  BOOST_TEST(j["point"]["svf"].get<double>() < 0.95);
+  const skyband::PngImage png = skyband::read_png_rgb8(d / "ground.png");
+  BOOST_TEST_REQUIRE(png.width == 128);
+  std::size_t red = 0;
+  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) red += png.rgb[i] == 230 && png.rgb[i + 1] == 30 && png.rgb[i + 2] == 30;
+  BOOST_TEST(red > 20u);
+  BOOST_TEST(fs::exists(d / "ground.exr"));
+  // Errors name the option.
+  for (const auto& [args, what] : std::vector<std::pair<std::string, std::string>>{
+           {"--at 5,5 --out '" + (d / "x.exr").string() + "'" + mesh, "--at"},
+           {"--at 5,5,10 --out '" + (d / "x.exr").string() + "' --sun-altitude 30", "--mesh"},
+           {"--at 5,5,10 --normal 0,0,0 --out '" + (d / "x.exr").string() + "'" + mesh, "--normal"},
+           {"--at 5,5,10" + mesh, "--out"}}) {
+    const RunResult r = run(args);
+    BOOST_TEST(r.exit_code == 2, r.err);
+    BOOST_TEST(r.err.find(what) != std::string::npos, r.err);
+  }
+}
