@@ -1,7 +1,8 @@
 // Fuzz harness for read_mesh (io/mesh_reader.h): the input is a whole mesh file. Built once per
-// format (fuzz/CMakeLists.txt: fuzz_mesh_obj, _off, _ply, _stl); SKYBAND_FUZZ_MESH_EXT is the
-// extension the temporary file gets, which is how read_mesh picks the format. Both passes run:
-// the validating polygon-soup reader and OpenMesh, then triangulation and the defect report.
+// format (fuzz/CMakeLists.txt: fuzz_mesh_obj, _off, _ply, _stl, _cityjson, _cityjsonseq);
+// SKYBAND_FUZZ_MESH_EXT is the extension the temporary file gets, which is how read_mesh picks
+// the format. Every pass runs: the validating reader (and OpenMesh for OBJ, PLY and STL), then
+// triangulation and the defect report.
 #include <cstddef>
 #include <cstdint>
 

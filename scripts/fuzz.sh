@@ -3,8 +3,8 @@
 # build folder and runs each one for SECONDS.
 #
 # Usage: scripts/fuzz.sh SECONDS [TARGET...]     e.g. scripts/fuzz.sh 30, scripts/fuzz.sh 600 mesh_off
-# TARGETs (default all): mesh_obj mesh_off mesh_ply mesh_stl csv_table points_csv times_csv
-#   scene_file scene_override epw_reader (the executables are <build>/fuzz/fuzz_<TARGET>).
+# TARGETs (default all): mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq
+#   csv_table points_csv times_csv scene_file scene_override epw_reader (the executables are <build>/fuzz/fuzz_<TARGET>).
 # Environment:
 #   SKYBAND_FUZZ_BUILD_DIR  build folder (default build-fuzz)
 #   SKYBAND_SHARED_DIR      the shared/ folder with data/ (default ../shared)
@@ -25,7 +25,7 @@
 #     the output of each run to <build>/fuzz/logs/.
 # Seeds, used in place (symbolic links; files over 256 KiB are cut to their first 64 KiB at a
 # line end into the build folder, since big seeds only slow the fuzzer down):
-#   ../shared/data/{buildings,degenerate,weather,fuzz-found}, tests/data/meshes,
+#   ../shared/data/{buildings,cityjson,degenerate,weather,fuzz-found}, tests/data/meshes,
 #   examples/scenes, and the hand-made fuzz/seeds/<target>/, chosen by file extension.
 # Reproduce a finding: <build>/fuzz/fuzz_<target> <reproducer file>.
 #
@@ -36,7 +36,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 
-ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl csv_table points_csv times_csv scene_file scene_override epw_reader)
+ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq csv_table points_csv times_csv scene_file scene_override epw_reader)
 if [ $# -lt 1 ] || ! [[ "$1" =~ ^[0-9]+$ ]] || [ "$1" -lt 1 ]; then
   sed -n '2,9p' "$0" >&2
   exit 2
@@ -57,13 +57,14 @@ LIBFUZZER_LIMITS=(-timeout=10 -rss_limit_mb=2048)
 scripts/install-deps.sh --fuzz
 
 # Build: libraries + harnesses only (the target skyband_fuzzers), Debug with -O1: assertions on,
-# fast enough to fuzz.
+# fast enough to fuzz. The tests are configured too (not built here): scripts/ci-sanitizers.sh
+# builds a subset of them in the same folder, on the same sanitized libraries.
 t0=$(date +%s)
 if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
   GEN=()
   command -v ninja >/dev/null && GEN=(-G Ninja)
   CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Debug \
-    -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" -DSKYBAND_FUZZ=ON -DSKYBAND_BUILD_TESTS=OFF -DSKYBAND_BUILD_BENCH=OFF \
+    -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" -DSKYBAND_FUZZ=ON -DSKYBAND_BUILD_TESTS=ON -DSKYBAND_BUILD_BENCH=OFF \
     -DSKYBAND_SHARED_DIR="$SHARED_DIR" -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE || exit 2
 fi
 cmake --build "$BUILD_DIR" --target skyband_fuzzers -j "$JOBS" || exit 2
@@ -81,6 +82,8 @@ seed_extensions() {
     mesh_off) echo off ;;
     mesh_ply) echo ply ;;
     mesh_stl) echo stl ;;
+    mesh_cityjson) echo json ;;
+    mesh_cityjsonseq) echo jsonl ;;
     csv_table | points_csv | times_csv) echo csv ;;
     scene_file) echo toml ;;
     scene_override) echo txt ;;  # only fuzz-found/scene_override_* among the shared files
@@ -92,7 +95,7 @@ seed_extensions() {
 candidate_seeds() {
   local target=$1 ext dir f base
   ext=$(seed_extensions "$target")
-  for dir in "$SHARED_DIR/data/buildings" "$SHARED_DIR/data/degenerate" "$SHARED_DIR/data/weather" \
+  for dir in "$SHARED_DIR/data/buildings" "$SHARED_DIR/data/cityjson" "$SHARED_DIR/data/degenerate" "$SHARED_DIR/data/weather" \
              "$SHARED_DIR/data/fuzz-found" "$ROOT/tests/data/meshes" "$ROOT/examples/scenes" "$ROOT/fuzz/seeds/$target"; do
     [ -d "$dir" ] || continue
     for f in "$dir"/*; do

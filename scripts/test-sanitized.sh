@@ -9,6 +9,8 @@
 #   SKYBAND_SANITIZE_JOBS       build and ctest parallelism (default 2: the machine is shared)
 #   SKYBAND_FP_TRAPS            default 1 (FE_INVALID + FE_DIVBYZERO); invalid or divbyzero: one
 #                               alone; 0: no floating-point traps (tests/fp_traps.cpp)
+#   SKYBAND_SANITIZE_TESTS      a ctest -R regular expression: build and run only the suites it
+#                               matches (default: all of them)
 #   CC, CXX                     compiler at the first configure (default the system's, GCC)
 # Any sanitizer report, trap or leak fails the test that caused it; ASan prints the stack.
 # -O1 (not -O0): ASan's recommendation, and several times faster on the CGAL-heavy tests.
@@ -26,7 +28,18 @@ if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
   cmake -S . -B "$BUILD_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
     -DSKYBAND_SANITIZE=ON -DSKYBAND_BUILD_BENCH=OFF -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE
 fi
-cmake --build "$BUILD_DIR" -j "$JOBS"
+CTEST_SELECT=()
+if [ -n "${SKYBAND_SANITIZE_TESTS:-}" ]; then
+  # Suite layer.name is the executable test_layer_name (tests/CMakeLists.txt).
+  mapfile -t targets < <(cd "$BUILD_DIR" && ctest -N -R "$SKYBAND_SANITIZE_TESTS" |
+                         sed -nE 's/^ *Test +#[0-9]+: ([a-z_]+)\.([a-z0-9_]+)$/test_\1_\2/p')
+  [ ${#targets[@]} -gt 0 ] || { echo "test-sanitized: no suite matches '$SKYBAND_SANITIZE_TESTS'" >&2; exit 2; }
+  echo "test-sanitized: ${#targets[@]} suites: ${targets[*]}"
+  cmake --build "$BUILD_DIR" -j "$JOBS" --target "${targets[@]}"
+  CTEST_SELECT=(-R "$SKYBAND_SANITIZE_TESTS")
+else
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+fi
 t1=$(date +%s)
 echo "test-sanitized: build took $((t1 - t0)) s"
 
@@ -36,6 +49,6 @@ export BOOST_TEST_CATCH_SYSTEM_ERRORS=no
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:check_initialization_order=1:strict_string_checks=1:handle_sigfpe=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 status=0
-(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" --timeout 3600 "$@") || status=$?
+(cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" --timeout 3600 "${CTEST_SELECT[@]}" "$@") || status=$?
 echo "test-sanitized: tests took $(( $(date +%s) - t1 )) s (build folder $BUILD_DIR, SKYBAND_FP_TRAPS=$SKYBAND_FP_TRAPS)"
 exit $status
