@@ -19,27 +19,6 @@ std::string number(double v) {
   return b;
 }
 
-// Visits every triangle of the scene whose xy box holds (x, y) and that reaches above z_min.
-template <class F>
-void for_triangles_over(const Scene& scene, double x, double y, double z_min, std::vector<std::uint32_t>& stack, F&& f) {
-  const auto& nodes = scene.bvh_nodes();
-  const auto& order = scene.bvh_triangle_order();
-  const auto holds = [&](const Aabb& b) { return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y(); };
-  if (nodes.empty() || !holds(nodes[0].box)) return;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const BvhNode& node = nodes[stack.back()];
-    stack.pop_back();
-    if (node.count == 0) {
-      for (std::uint32_t child : {node.first, node.first + 1})
-        if (holds(nodes[child].box)) stack.push_back(child);
-      continue;
-    }
-    for (std::uint32_t k = node.first; k < node.first + node.count; ++k) f(order[k]);
-  }
-}
-
 }  // namespace
 
 GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground, const GroundGridOptions& o) {
@@ -83,27 +62,28 @@ GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground,
       double top_z = -std::numeric_limits<double>::infinity();
       std::int64_t top = -1;
       bool on_wall = false;
-      for_triangles_over(scene, x, y, -std::numeric_limits<double>::infinity(), stack, [&](std::uint32_t t) {
+      scene.any_triangle_over(x, y, -std::numeric_limits<double>::infinity(), stack, [&](std::uint32_t t) {
         const auto& tri = soup.triangles[t];
         const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
         if (std::min({A.x(), B.x(), C.x()}) > x || std::max({A.x(), B.x(), C.x()}) < x ||
             std::min({A.y(), B.y(), C.y()}) > y || std::max({A.y(), B.y(), C.y()}) < y)
-          return;
+          return false;
         const int o0 = exact_orient2d_sign(A, B, C);
         const int o1 = exact_orient2d_sign(A, B, q), o2 = exact_orient2d_sign(B, C, q), o3 = exact_orient2d_sign(C, A, q);
         if (o0 == 0) {  // vertical (or degenerate): the node on its footprint segment is on a wall
           const bool on_segment = o1 == 0 && o2 == 0 && o3 == 0;
           const Vec3 n = (B - A).cross(C - A);
           if (on_segment && n.squaredNorm() > 0) on_wall = true;
-          return;
+          return false;
         }
-        if (o1 * o0 < 0 || o2 * o0 < 0 || o3 * o0 < 0) return;
+        if (o1 * o0 < 0 || o2 * o0 < 0 || o3 * o0 < 0) return false;
         // Height of the triangle's plane at (x, y): n·(X − A) = 0.
         const Vec3 n = (B - A).cross(C - A);
         const double z = A.z() - (n.x() * (x - A.x()) + n.y() * (y - A.y())) / n.z();
         const bool is_ground = t < ground.size() && ground[t];
         // Ties go to the non-ground surface: a roof at the height of the terrain hides it.
         if (z > top_z || (z == top_z && top >= 0 && !is_ground)) top_z = z, top = t;
+        return false;
       });
       if (on_wall) {
         ++g.under_building;
@@ -127,20 +107,19 @@ GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground,
       }
       // The exact test of the final point: no non-ground triangle over its xy lies above it or
       // through it (the ground it stands on may round to either side of it).
-      bool covered = false;
-      for_triangles_over(scene, x, y, p.position.z(), stack, [&](std::uint32_t t) {
-        if (covered || (t < ground.size() && ground[t])) return;
+      const Vec3& P = p.position;
+      const bool covered = scene.any_triangle_over(x, y, P.z(), stack, [&](std::uint32_t t) {
+        if (t < ground.size() && ground[t]) return false;
         const auto& tri = soup.triangles[t];
         const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
-        if (A.z() < p.position.z() && B.z() < p.position.z() && C.z() < p.position.z()) return;
+        if (A.z() < P.z() && B.z() < P.z() && C.z() < P.z()) return false;
         const int o0 = exact_orient2d_sign(A, B, C);
-        if (o0 == 0) return;  // vertical: decided above (on its footprint: no point)
-        const Vec3& P = p.position;
+        if (o0 == 0) return false;  // vertical: decided above (on its footprint: no point)
         const int o1 = exact_orient2d_sign(A, B, P), o2 = exact_orient2d_sign(B, C, P), o3 = exact_orient2d_sign(C, A, P);
-        if (o1 * o0 < 0 || o2 * o0 < 0 || o3 * o0 < 0) return;
+        if (o1 * o0 < 0 || o2 * o0 < 0 || o3 * o0 < 0) return false;
         // det[A − P, B − P, C − P] has the sign of n·(A − P) with n_z ∝ o0: ≥ 0 · o0 → the
         // triangle's plane is at or above P at P's xy.
-        if (exact_orientation(A, B, C, P) * o0 >= 0) covered = true;
+        return exact_orientation(A, B, C, P) * o0 >= 0;
       });
       if (covered) {
         ++g.dropped_exact;

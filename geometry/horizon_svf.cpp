@@ -55,42 +55,24 @@ struct HorizonSvf::Impl {
   // Is p under (or on) a triangle reaching above it — inside a column solid or on its surface?
   // Exact; only triangles whose xy box holds p's xy are tested (a point query on the scene BVH).
   bool under_a_triangle() {
-    const auto& nodes = scene.bvh_nodes();
-    const auto& order = scene.bvh_triangle_order();
     const auto& v = scene.soup().vertices;
-    const auto holds = [&](const Aabb& b) {
-      return b.hi.z() > p.z() && b.lo.x() <= p.x() && p.x() <= b.hi.x() && b.lo.y() <= p.y() && p.y() <= b.hi.y();
-    };
-    if (nodes.empty() || !holds(nodes[0].box)) return false;
-    stack.clear();
-    stack.push_back(0);
-    while (!stack.empty()) {
-      const BvhNode& node = nodes[stack.back()];
-      stack.pop_back();
-      if (node.count == 0) {
-        for (std::uint32_t child : {node.first, node.first + 1})
-          if (holds(nodes[child].box)) stack.push_back(child);
-        continue;
-      }
-      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-        const auto& tri = scene.soup().triangles[order[k]];
-        const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
-        if (A.z() <= p.z() && B.z() <= p.z() && C.z() <= p.z()) continue;
-        if (std::min({A.x(), B.x(), C.x()}) > p.x() || std::max({A.x(), B.x(), C.x()}) < p.x() ||
-            std::min({A.y(), B.y(), C.y()}) > p.y() || std::max({A.y(), B.y(), C.y()}) < p.y())
-          continue;
-        const int s = exact_orient2d_sign(A, B, C);
-        const int o1 = exact_orient2d_sign(A, B, p), o2 = exact_orient2d_sign(B, C, p), o3 = exact_orient2d_sign(C, A, p);
-        const bool inside = s != 0 ? (o1 * s >= 0 && o2 * s >= 0 && o3 * s >= 0) : (o1 == 0 && o2 == 0 && o3 == 0);
-        if (!inside) continue;
-        if (s == 0) return true;  // a vertical triangle through p's vertical
-        // det[A − p, B − p, C − p] has the sign of n·(A − p), n = (B − A) × (C − A), n_z ∝ s:
-        // same signs — the triangle is above p there (p under it, or on it). A triangle below p
-        // at p's xy (p on a roof) is fine: its highest point in each azimuth is on an edge.
-        if (exact_orientation(A, B, C, p) * s >= 0) return true;
-      }
-    }
-    return false;
+    return scene.any_triangle_over(p.x(), p.y(), p.z(), stack, [&](std::uint32_t t) {
+      const auto& tri = scene.soup().triangles[t];
+      const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
+      if (A.z() <= p.z() && B.z() <= p.z() && C.z() <= p.z()) return false;
+      if (std::min({A.x(), B.x(), C.x()}) > p.x() || std::max({A.x(), B.x(), C.x()}) < p.x() ||
+          std::min({A.y(), B.y(), C.y()}) > p.y() || std::max({A.y(), B.y(), C.y()}) < p.y())
+        return false;
+      const int s = exact_orient2d_sign(A, B, C);
+      const int o1 = exact_orient2d_sign(A, B, p), o2 = exact_orient2d_sign(B, C, p), o3 = exact_orient2d_sign(C, A, p);
+      const bool inside = s != 0 ? (o1 * s >= 0 && o2 * s >= 0 && o3 * s >= 0) : (o1 == 0 && o2 == 0 && o3 == 0);
+      if (!inside) return false;
+      if (s == 0) return true;  // a vertical triangle through p's vertical
+      // det[A − p, B − p, C − p] has the sign of n·(A − p), n = (B − A) × (C − A), n_z ∝ s:
+      // same signs — the triangle is above p there (p under it, or on it). A triangle below p
+      // at p's xy (p on a roof) is fine: its highest point in each azimuth is on an edge.
+      return exact_orientation(A, B, C, p) * s >= 0;
+    });
   }
 
   // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an

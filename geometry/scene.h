@@ -58,6 +58,29 @@ class Scene {
   const Aabb& bounds() const { return nodes_.empty() ? empty_box_ : nodes_[0].box; }
   const std::vector<BvhNode>& bvh_nodes() const { return nodes_; }
   const std::vector<std::uint32_t>& bvh_triangle_order() const { return order_; }
+  // A point query on the BVH: calls stop = visit(t) for every triangle t of a leaf whose box holds
+  // the vertical line through (x, y) and reaches up to z_min or above (a superset: the caller
+  // tests the triangle), until a visit returns true; returns whether one did. `stack` is scratch
+  // (no allocation once it has grown).
+  template <class Visit>
+  bool any_triangle_over(double x, double y, double z_min, std::vector<std::uint32_t>& stack, Visit&& visit) const {
+    const auto holds = [&](const Aabb& b) { return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y(); };
+    if (nodes_.empty() || !holds(nodes_[0].box)) return false;
+    stack.clear();
+    stack.push_back(0);
+    while (!stack.empty()) {
+      const BvhNode& node = nodes_[stack.back()];
+      stack.pop_back();
+      if (node.count == 0) {
+        for (std::uint32_t child : {node.first, node.first + 1})
+          if (holds(nodes_[child].box)) stack.push_back(child);
+        continue;
+      }
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+        if (visit(order_[k])) return true;
+    }
+    return false;
+  }
   // Geometric (unnormalised) normal of triangle t by its winding: (v1 − v0) × (v2 − v0).
   Vec3 triangle_normal(std::uint32_t t) const;
 
