@@ -11,6 +11,7 @@
 #                               alone; 0: no floating-point traps (tests/fp_traps.cpp)
 #   SKYBAND_SANITIZE_TESTS      a ctest -R regular expression: build and run only the suites it
 #                               matches (default: all of them)
+#   SKYBAND_SANITIZE_EXCLUDE    with it, a ctest -E regular expression of suites left out
 #   CC, CXX                     compiler at the first configure (default the system's, GCC)
 # Any sanitizer report, trap or leak fails the test that caused it; ASan prints the stack.
 # -O1 (not -O0): ASan's recommendation, and several times faster on the CGAL-heavy tests.
@@ -31,12 +32,13 @@ fi
 CTEST_SELECT=()
 if [ -n "${SKYBAND_SANITIZE_TESTS:-}" ]; then
   # Suite layer.name is the executable test_layer_name (tests/CMakeLists.txt).
-  mapfile -t targets < <(cd "$BUILD_DIR" && ctest -N -R "$SKYBAND_SANITIZE_TESTS" |
+  CTEST_SELECT=(-R "$SKYBAND_SANITIZE_TESTS")
+  [ -z "${SKYBAND_SANITIZE_EXCLUDE:-}" ] || CTEST_SELECT+=(-E "$SKYBAND_SANITIZE_EXCLUDE")
+  mapfile -t targets < <(cd "$BUILD_DIR" && ctest -N "${CTEST_SELECT[@]}" |
                          sed -nE 's/^ *Test +#[0-9]+: ([a-z_]+)\.([a-z0-9_]+)$/test_\1_\2/p')
   [ ${#targets[@]} -gt 0 ] || { echo "test-sanitized: no suite matches '$SKYBAND_SANITIZE_TESTS'" >&2; exit 2; }
   echo "test-sanitized: ${#targets[@]} suites: ${targets[*]}"
   cmake --build "$BUILD_DIR" -j "$JOBS" --target "${targets[@]}"
-  CTEST_SELECT=(-R "$SKYBAND_SANITIZE_TESTS")
 else
   cmake --build "$BUILD_DIR" -j "$JOBS"
 fi
