@@ -82,7 +82,9 @@ PointWarnings find_point_warnings(const Scene& scene, const PointsTable& table) 
     Ray ray;
     ray.origin = q.position;
     ray.direction = q.normal;
-    ray.t_min = 0;
+    // From where the job evaluates the point (its face's offset, 1 µm): the surface a point lies
+    // on is not in front of it, however the rounding of its coordinates falls.
+    ray.t_min = VisibilityOptions{}.surface_offset_m;
     ray.t_max = kFrontDistance;
     if (scene.intersect(ray)) note(w.behind_surface, w.behind_lines, line);
   }

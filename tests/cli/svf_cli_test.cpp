@@ -368,3 +368,13 @@ BOOST_AUTO_TEST_CASE(parse_errors_suggest_the_flag) {
   r = run_skyband("svf --help");
   BOOST_TEST(r.exit_code == 0);
 }
+
+// A point exactly on its wall, facing out of it, is not "behind a surface": no warning.
+BOOST_AUTO_TEST_CASE(points_on_their_wall_get_no_warning) {
+  const fs::path d = skyband::test::test_folder("svf_cli_on_wall");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "p.csv") << "x,y,z,nx,ny,nz\n10,5,5,1,0,0\n5,0,3,0,-1,0\n";
+  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv") + " --quiet");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
+}
