@@ -4,11 +4,32 @@
 
 namespace skyband {
 
+void TriangleSoup::append_objects(const TriangleSoup& other, std::size_t old_triangles) {
+  if (triangle_object.empty() && other.triangle_object.empty()) return;
+  // Triangles without an object (either side) get one unnamed object per soup.
+  auto unnamed = [this](std::size_t from, std::size_t to) {
+    object_names.emplace_back();
+    const auto id = static_cast<std::uint32_t>(object_names.size() - 1);
+    triangle_object.resize(from, 0);
+    triangle_object.resize(to, id);
+  };
+  if (triangle_object.empty() && old_triangles > 0) unnamed(0, old_triangles);
+  triangle_object.resize(old_triangles);
+  if (other.triangle_object.empty()) {
+    unnamed(old_triangles, triangles.size());
+    return;
+  }
+  const auto base = static_cast<std::uint32_t>(object_names.size());
+  object_names.insert(object_names.end(), other.object_names.begin(), other.object_names.end());
+  for (const std::uint32_t o : other.triangle_object) triangle_object.push_back(base + o);
+}
+
 void TriangleSoup::append(const TriangleSoup& other) {
   const auto base = static_cast<std::uint32_t>(vertices.size());
   const std::size_t old_triangles = triangles.size();
   vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
   for (const auto& t : other.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  append_objects(other, old_triangles);
 
   const bool any_materials = !triangle_material.empty() || !other.triangle_material.empty();
   if (!any_materials) return;
@@ -37,6 +58,10 @@ void append_box(TriangleSoup& soup, const Vec3& lo, const Vec3& hi) {
                                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   for (const auto& t : kFaces) soup.triangles.push_back({b + t[0], b + t[1], b + t[2]});
   if (!soup.triangle_material.empty()) soup.triangle_material.resize(soup.triangles.size(), 0);
+  if (!soup.triangle_object.empty()) {
+    soup.object_names.emplace_back();
+    soup.triangle_object.resize(soup.triangles.size(), static_cast<std::uint32_t>(soup.object_names.size() - 1));
+  }
 }
 
 }  // namespace skyband

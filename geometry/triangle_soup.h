@@ -17,10 +17,18 @@ struct TriangleSoup {
   // Optional per-triangle material index into material_names (empty = all material 0).
   std::vector<std::uint32_t> triangle_material;
   std::vector<std::string> material_names;
+  // Optional per-triangle object index into object_names (empty = no objects): the city object
+  // (CityJSON CityObject id, CityGML gml:id) a triangle belongs to. Kept by append; objects of
+  // different soups stay distinct even when their names coincide.
+  std::vector<std::uint32_t> triangle_object;
+  std::vector<std::string> object_names;
 
   std::size_t triangle_count() const { return triangles.size(); }
   // Appends another soup (indices and material ids are offset; materials merged by name).
   void append(const TriangleSoup& other);
+
+ private:
+  void append_objects(const TriangleSoup& other, std::size_t old_triangles);
 };
 
 // Appends the closed axis-aligned box [lo, hi] as 12 outward-oriented triangles.

@@ -340,6 +340,8 @@ class ModelBuilder {
         }
       }
       material_fallback_ = type_it->get<std::string>();
+      object_name_ = &id;
+      object_index_ = kUnused;
       const std::size_t surfaces_before = counts_.surfaces;
       for (std::size_t g = 0; g < geometry->size(); ++g) {
         const json& geom = (*geometry)[g];
@@ -590,9 +592,14 @@ class ModelBuilder {
     if (t.method == PolygonTriangulationMethod::kFanSelfIntersecting)
       notes_.add("self-crossing surfaces (fan-triangulated)", pointer);
     const std::uint32_t m = material(name);
+    if (object_index_ == kUnused && !t.triangles.empty()) {
+      object_index_ = static_cast<std::uint32_t>(soup_.object_names.size());
+      soup_.object_names.push_back(object_name_ ? *object_name_ : std::string());
+    }
     for (const auto& tri : t.triangles) {
       soup_.triangles.push_back(tri);
       soup_.triangle_material.push_back(m);
+      soup_.triangle_object.push_back(object_index_);
     }
     ++counts_.surfaces;
     if (rings_.size() > 1 && !t.holes_dropped) ++counts_.surfaces_with_holes;
@@ -613,6 +620,8 @@ class ModelBuilder {
   std::vector<std::uint32_t> remap_;
   std::unordered_map<std::string, std::uint32_t> material_index_;
   std::string material_fallback_;
+  const std::string* object_name_ = nullptr;  // the CityObject being read
+  std::uint32_t object_index_ = kUnused;      // its index in soup_.object_names, once it has a triangle
   std::vector<std::vector<std::uint32_t>> rings_;
 };
 

@@ -236,6 +236,7 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
     r.reader = options.lod ? "skyband CityJSON reader (each object at LoD " + *options.lod + ")"
                            : std::string("skyband CityJSON reader (each object at its highest LoD)");
     r.vertices_in_file = c.vertices;
+    r.crs = c.crs;
     r.faces_in_file = r.faces_read = c.surfaces;
     r.triangles = c.triangles;
     r.polygons_triangulated = c.surfaces;

@@ -40,7 +40,8 @@
 //  - STL: ascii and binary (binary when the size is 84 + 50·count, else ascii if it starts with
 //    `solid`). STL has no connectivity: exactly equal positions are welded (the report says so).
 //  - CityJSON (`.json`, `.city.json`) and CityJSONSeq (`.jsonl`): io/cityjson_reader.h (each
-//    object at its highest LoD; material names = semantic surface types, else object types).
+//    object at its highest LoD; material names = semantic surface types, else object types;
+//    object names = CityObject ids, per triangle in TriangleSoup::triangle_object).
 //  Faces with fewer than 3 vertices are input errors. A file with no faces is an "empty mesh"
 //  error. Unknown extensions are errors that list the supported ones.
 #include <cstddef>
@@ -66,6 +67,7 @@ struct MeshReadReport {
   std::size_t triangles = 0;
   std::size_t polygons_triangulated = 0;  // faces with > 3 vertices
   std::size_t polygons_fanned = 0;        // of those: zero-area or self-crossing, fan-triangulated
+  std::string crs;                        // city models: the CRS as the file names it ("" = none/unknown)
   MeshDefects defects;                    // after welding exactly equal positions
   std::vector<std::string> notes;         // e.g. "OpenMesh dropped 743 faces; read as polygon soup"
   std::string summary() const;            // a few human-readable lines

@@ -742,3 +742,33 @@ BOOST_AUTO_TEST_CASE(cleanup) {
   fs::remove_all(temp_path());
   BOOST_TEST(!fs::exists(temp_path()));
 }
+
+BOOST_AUTO_TEST_CASE(each_triangle_names_its_city_object) {
+  // Two cubes in two objects and one object without geometry: 12 triangles per cube (6 quads,
+  // 2 triangles each), each triangle pointing at its own CityObject id.
+  const std::string text =
+      R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],"translate":[0,0,0]},)"
+      R"("CityObjects":{"a":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[)" + kCubeShell +
+      R"(]}]},"empty":{"type":"Building"},"b":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[)" +
+      kCubeShell + R"(]}]}},"vertices":)" + kCubeVertices + "}";
+  const TriangleSoup s = read_cityjson(write_file("objects.city.json", text));
+  BOOST_TEST(s.triangle_count() == 24u);
+  BOOST_TEST(s.triangle_object.size() == 24u);
+  std::map<std::string, std::size_t> per_object;
+  for (const std::uint32_t o : s.triangle_object) ++per_object[s.object_names.at(o)];
+  BOOST_TEST((per_object == std::map<std::string, std::size_t>{{"a", 12}, {"b", 12}}));
+
+  // append keeps each soup's objects apart (even with equal names) and gives a soup without
+  // objects one unnamed object.
+  TriangleSoup joined = s;
+  joined.append(s);
+  TriangleSoup plain;
+  append_box(plain, Vec3(5, 5, 0), Vec3(6, 6, 1));
+  joined.append(plain);
+  BOOST_TEST(joined.object_names.size() == 5u);
+  BOOST_TEST(joined.triangle_object.size() == joined.triangle_count());
+  BOOST_TEST(joined.triangle_object[30] == joined.triangle_object[24]);
+  BOOST_TEST(joined.triangle_object[24] != joined.triangle_object[0]);
+  BOOST_TEST(joined.object_names.back() == "");
+  BOOST_TEST(joined.triangle_object.back() == 4u);
+}
