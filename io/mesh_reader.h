@@ -14,7 +14,7 @@
 //     job: only if it reproduces every face of the file, with bit-identical corner positions, in
 //     file order. If it runs out of memory the file is rejected (InputError), never silently read
 //     by step 3. It is not even tried where the validating pass knows it misreads the file
-//     (PolygonSoup::not_for_openmesh; found by fuzzing, 2026-12-01): any OFF file (OpenMesh 9's OFF
+//     (PolygonSoup::not_for_openmesh; found by fuzzing): any OFF file (OpenMesh 9's OFF
 //     reader takes layouts our pass accepts differently — counts on the header line, an extra
 //     value after a face, a comment right after the header — and then reads "-1" as a face size of
 //     ~4·10⁹, gigabytes, or uses an uninitialised face count) and a PLY file with an element
