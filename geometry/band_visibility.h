@@ -2,13 +2,14 @@
 // Exact occluded α-intervals on band sample lines (method.md §3) and the per-point visibility
 // computation that fills the visibility cache.
 //
-// Robustness policy (stated once, docs/robustness.md): every decision — which side of a sample
-// plane a vertex lies on, whether a triangle's plane contains the calculation point, whether a
-// crossing lies on the sky half of the plane — is an exact predicate (floating-point filter with
-// a CGAL exact fallback). Constructions (crossing points, their angles α) are computed in
-// floating point in a canonical order per edge, so two triangles sharing an edge produce
-// bit-identical interval end points and a closed mesh never leaks light through shared edges.
-// The only float fast paths are conservative culls.
+// Robustness policy (stated once, docs/robustness.md): which side of a sample plane a vertex lies
+// on is the exact sign of m·fl(V − P) (the plane's rounded normal and the vertex's rounded offset,
+// the same for every triangle sharing the vertex), and whether a triangle's plane contains the
+// calculation point is an exact orient3d on the input doubles (floating-point filters with a CGAL
+// exact fallback). Constructions (crossing points, their angles α) are computed in floating point
+// in a canonical order per edge, so two triangles sharing an edge produce bit-identical interval
+// end points, and the clip to the sky half of the plane compares those same bits: a closed mesh
+// never leaks light through shared edges. The only float fast paths are conservative culls.
 #include <cstdint>
 #include <functional>
 #include <span>
