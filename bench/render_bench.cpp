@@ -2,8 +2,8 @@
 // time of the first image (geometry pass + sun + shading) and of each relit variant (fig 6 suns:
 // sun visibility + sky model + shading), peak memory (getrusage ru_maxrss), and the visibility
 // pass by the paper's band method (the default, as skyband figures) against the exact visible sky
-// cut along the same lines (--visibility exact swaps them). Targets from the
-// issue, reported not asserted: ≤ 30 s first image, ≤ 3 s per relit variant on the 2-core machine.
+// cut along the same lines (--visibility exact swaps them). Targets,
+// reported not asserted: ≤ 30 s first image, ≤ 3 s per relit variant on the 2-core machine.
 // With --check-reuse every image is also shaded without image-space specular reuse
 // (specular_reuse.h) and the deviation is reported: over pixels, max and mean |ΔY|/Y of the total
 // and max |ΔY| of the specular sky layer relative to that layer's largest Y in the image.

@@ -766,7 +766,8 @@ struct BandVisibility::Impl {
   void refine_bands(std::vector<BandState>& bands) {
     // The estimates are estimates: refinement goes on to half the tolerance, so that the errors
     // themselves stay within it (measured on city, terrain and low-skyline points against the
-    // exact union: the largest error was 1.15× the estimated total without this margin).
+    // exact union: with the full tolerance as the criterion the largest error is 1.15× the
+    // estimated total).
     constexpr double kSafety = 0.5;
     for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
       // Both estimated totals, the SVF's and the exposure's, must be within the tolerance; a

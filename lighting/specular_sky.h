@@ -19,8 +19,8 @@
 //     is close to a Gaussian of σ ≈ √2·m in ω (Beckmann, σ = m/√2 in the half-vector angle):
 //     GL-3 on cells of 2·m ≈ 1.4σ errs by ~h⁷f⁽⁶⁾/2·10⁶ ≈ 10⁻⁴ of the lobe, and cut pieces
 //     are smooth too, so no node is wasted on resolving a step (bench_specular measures it:
-//     cells of 1.5·m, the previous default, gave the same errors within ±0.03 % of the
-//     full-sky integral, with 20 % more evaluations on the paper figure).
+//     cells of 1.5·m give the same errors within ±0.03 % of the full-sky integral, with 20 % more
+//     evaluations on the paper figure).
 //     The march stops after the first cell whose largest G is ≤ ε·G_max (G_max the largest G
 //     seen so far at this point) and no larger than the previous cell's (the seed stops at
 //     G < ε alone; at grazing views and near the pencil axis G(α*) sits on a rising flank and
