@@ -17,6 +17,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/polygon_triangulation.h"
+#include "io/citygml_reader.h"
 #include "io/cityjson_reader.h"
 #include "io/utf8_text.h"
 
@@ -206,7 +207,7 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
 }  // namespace
 
 const std::vector<std::string>& supported_mesh_extensions() {
-  static const std::vector<std::string> extensions{".obj", ".off", ".ply", ".stl", ".json", ".jsonl"};
+  static const std::vector<std::string> extensions{".obj", ".off", ".ply", ".stl", ".json", ".jsonl", ".gml", ".xml", ".citygml"};
   return extensions;
 }
 
@@ -254,11 +255,44 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
   return soup;
 }
 
+// CityGML through io/citygml_reader.h (libcitygml), reported in the mesh readers' terms.
+TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadReport* report, const MeshReadOptions& options) {
+  CityGmlReport c;
+  CityGmlReadOptions city;
+  city.lod = options.lod;
+  TriangleSoup soup = read_citygml(file, city, &c);
+  if (report) {
+    MeshReadReport r;
+    r.file = c.file;
+    r.format = c.format;
+    r.reader = options.lod ? "libcitygml 2.4 + skyband CityGML reader (each object at LoD " + *options.lod + ")"
+                           : std::string("libcitygml 2.4 + skyband CityGML reader (each object at its highest LoD)");
+    r.vertices_in_file = c.vertices;
+    r.crs = c.crs;
+    r.faces_in_file = r.faces_read = c.surfaces;
+    r.triangles = c.triangles;
+    r.polygons_triangulated = c.surfaces;
+    r.notes.push_back(std::to_string(c.objects_with_geometry) + " of " + std::to_string(c.objects) + " city objects read (" +
+                      std::to_string(c.skipped_objects) + " skipped), " + std::to_string(c.thematic_surfaces) +
+                      " thematic surfaces, " + std::to_string(c.surfaces_with_holes) + " polygons with holes");
+    std::string lods;
+    for (const auto& [lod, n] : c.lods_used) lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
+    if (!lods.empty()) r.notes.push_back(lods);
+    if (!c.crs_in_file.empty())
+      r.notes.push_back("srsName " + c.crs_in_file + (c.crs != c.crs_in_file ? "; output in " + c.crs : std::string()));
+    r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
+    r.defects = analyse_defects(soup);
+    *report = std::move(r);
+  }
+  return soup;
+}
+
 TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report, const MeshReadOptions& options) {
   const std::string name = file.string();
   if (is_cityjson_path(file)) return read_city_model(file, report, options);
+  if (is_citygml_path(file)) return read_citygml_model(file, report, options);
   if (options.lod)
-    throw InputError(name + ": --lod " + *options.lod + " applies to city models (CityJSON, CityJSONSeq); this file has no LoDs");
+    throw InputError(name + ": --lod " + *options.lod + " applies to city models (CityJSON, CityJSONSeq, CityGML); this file has no LoDs");
   const std::string extension = lower(file.extension().string());
   const auto& supported = supported_mesh_extensions();
   if (std::find(supported.begin(), supported.end(), extension) == supported.end()) {

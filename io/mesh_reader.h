@@ -42,6 +42,9 @@
 //  - CityJSON (`.json`, `.city.json`) and CityJSONSeq (`.jsonl`): io/cityjson_reader.h (each
 //    object at its highest LoD; material names = semantic surface types, else object types;
 //    object names = CityObject ids, per triangle in TriangleSoup::triangle_object).
+//  - CityGML 1.0 and 2.0 (`.gml`, `.xml`, `.citygml`): io/citygml_reader.h, through libcitygml
+//    (the same LoD choice, materials and objects as CityJSON; geographic CRSs projected to UTM by
+//    PROJ, MeshReadReport::crs the output's CRS; CityGML 3.0 refused).
 //  Faces with fewer than 3 vertices are input errors. A file with no faces is an "empty mesh"
 //  error. Unknown extensions are errors that list the supported ones.
 #include <cstddef>
@@ -74,7 +77,7 @@ struct MeshReadReport {
 };
 
 struct MeshReadOptions {
-  // City models (CityJSON, CityJSONSeq): read each object at exactly this LoD ("1.2", "2.2";
+  // City models (CityJSON, CityJSONSeq, CityGML): read each object at exactly this LoD ("1.2", "2.2";
   // objects without it are skipped and counted); unset: each object at the highest it has
   // (io/cityjson_reader.h). Other formats have no LoD: InputError when set for them.
   std::optional<std::string> lod;
@@ -84,7 +87,8 @@ struct MeshReadOptions {
 TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr,
                        const MeshReadOptions& options = {});
 
-// The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl", ".json", ".jsonl".
+// The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl", ".json", ".jsonl",
+// ".gml", ".xml", ".citygml".
 const std::vector<std::string>& supported_mesh_extensions();
 
 namespace mesh_io {

@@ -20,6 +20,8 @@ PACKAGES=(
   libtomlplusplus-dev                     # scene files
   libhowardhinnant-date-dev tzdata        # named time zones (IANA tz database) for moments
   libnetcdf-dev                           # hourly results (NetCDF-4, CF conventions)
+  libcitygml-dev libxerces-c-dev          # CityGML 1.0/2.0 input (libcitygml parses with Xerces-C)
+  libproj-dev proj-data                   # geographic city models (PLATEAU) projected to UTM
 )
 for arg in "$@"; do
   case "$arg" in

@@ -1,0 +1,733 @@
+#include "io/citygml_reader.h"
+
+#include <citygml/citygml.h>
+#include <citygml/citygmllogger.h>
+#include <citygml/citymodel.h>
+#include <citygml/cityobject.h>
+#include <citygml/geometry.h>
+#include <citygml/polygon.h>
+
+#include <xercesc/framework/MemBufInputSource.hpp>
+#include <xercesc/sax/SAXParseException.hpp>
+#include <xercesc/sax2/DefaultHandler.hpp>
+#include <xercesc/sax2/SAX2XMLReader.hpp>
+#include <xercesc/sax2/XMLReaderFactory.hpp>
+#include <xercesc/util/PlatformUtils.hpp>
+#include <xercesc/util/XMLString.hpp>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "geometry/input_error.h"
+#include "geometry/polygon_with_holes_triangulation.h"
+#include "io/citygml_reprojection.h"
+#include "io/utf8_text.h"
+
+namespace skyband {
+namespace {
+
+using citygml::CityObject;
+using Type = CityObject::CityObjectsType;
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// libcitygml 2.4 keeps only the last piece of a text node Xerces delivers in pieces: measured,
+// a 1,038,788-byte posList is read whole, a 1,050,038-byte one loses its start (1 MiB chunks).
+constexpr std::size_t kMaxTextBytes = 1000000;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::size_t line_of(const std::string& bytes, std::size_t offset) {
+  return 1 + static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+}
+
+std::string read_bytes(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw InputError("mesh file '" + file.string() + "' does not exist");
+  if (std::filesystem::is_directory(file, ec)) throw InputError("mesh file '" + file.string() + "' is a directory, not a file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open: " + std::strerror(errno));
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(file.string() + ": read error");
+  return bytes;
+}
+
+// ---- The byte scan before libcitygml -------------------------------------------------------
+
+struct FileScan {
+  std::string version;                // "1.0" / "2.0"
+  std::vector<std::string> srs_names; // distinct srsName values, in order of appearance
+};
+
+// The root element's start tag (after a BOM, the XML declaration, comments and processing
+// instructions). DOCTYPEs are refused: CityGML uses none, and a DTD could make Xerces fetch
+// external files or expand entities without bound.
+std::string_view root_start_tag(const std::string& name, const std::string& bytes) {
+  std::size_t i = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  while (true) {
+    while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+    if (i >= bytes.size() || bytes[i] != '<') throw InputError(name + ":" + std::to_string(line_of(bytes, std::min(i, bytes.size()))) + ": not XML (no root element)");
+    if (bytes.compare(i, 4, "<!--") == 0) {
+      const std::size_t end = bytes.find("-->", i + 4);
+      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated comment");
+      i = end + 3;
+    } else if (bytes.compare(i, 2, "<?") == 0) {
+      const std::size_t end = bytes.find("?>", i + 2);
+      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated <?...?>");
+      i = end + 2;
+    } else if (bytes.compare(i, 2, "<!") == 0) {
+      throw InputError(name + ":" + std::to_string(line_of(bytes, i)) +
+                       ": a DOCTYPE declaration: CityGML files have none (refused: a DTD could load external files)");
+    } else {
+      const std::size_t end = bytes.find('>', i);
+      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated root element");
+      return std::string_view(bytes).substr(i, end + 1 - i);
+    }
+  }
+}
+
+// Every text run (between '>' and the next '<') must be shorter than kMaxTextBytes.
+void check_text_lengths(const std::string& name, const std::string& bytes) {
+  std::size_t i = bytes.find('>');
+  while (i != std::string::npos) {
+    const std::size_t next = bytes.find('<', i + 1);
+    const std::size_t end = next == std::string::npos ? bytes.size() : next;
+    if (end - i - 1 > kMaxTextBytes)
+      throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": a text of " + std::to_string(end - i - 1) +
+                       " bytes (a gml:posList?): libcitygml 2.4 cuts texts over 1 MiB silently, so the file is not read; "
+                       "split the ring or convert the file to CityJSON (citygml-tools to-cityjson)");
+    if (next == std::string::npos) return;
+    i = bytes.find('>', next);
+  }
+}
+
+std::vector<std::string> srs_names(const std::string& bytes) {
+  std::vector<std::string> out;
+  for (std::size_t i = bytes.find("srsName="); i != std::string::npos; i = bytes.find("srsName=", i + 8)) {
+    const std::size_t q = i + 8;
+    if (q >= bytes.size() || (bytes[q] != '"' && bytes[q] != '\'')) continue;
+    const std::size_t end = bytes.find(bytes[q], q + 1);
+    if (end == std::string::npos) break;
+    std::string value = bytes.substr(q + 1, end - q - 1);
+    if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(std::move(value));
+    if (out.size() > 16) break;  // enough to tell mixed CRSs
+  }
+  return out;
+}
+
+FileScan scan_bytes(const std::string& name, const std::string& bytes) {
+  FileScan scan;
+  const std::string_view root = root_start_tag(name, bytes);
+  for (const char quote : {'"', '\''}) {
+    const std::string ns = std::string("http://www.opengis.net/citygml/3.0") + quote;
+    if (const std::size_t at = bytes.find(ns); at != std::string::npos)
+      throw InputError(name + ":" + std::to_string(line_of(bytes, at)) +
+                       ": CityGML 3.0 is not supported (the reader reads CityGML 1.0 and 2.0); convert the file to CityGML 2.0 "
+                       "or CityJSON first, e.g. with citygml-tools (citygml-tools to-cityjson " +
+                       std::filesystem::path(name).filename().string() + ")");
+  }
+  if (root.find("http://www.opengis.net/citygml/2.0") != std::string_view::npos)
+    scan.version = "2.0";
+  else if (root.find("http://www.opengis.net/citygml/1.0") != std::string_view::npos)
+    scan.version = "1.0";
+  else {
+    std::string tag(root.substr(0, std::min<std::size_t>(root.find_first_of(" \t\r\n>"), 60)));
+    throw InputError(name + ": not CityGML 1.0 or 2.0: the root element " + printable_text(tag) +
+                     "> declares neither http://www.opengis.net/citygml/2.0 nor http://www.opengis.net/citygml/1.0");
+  }
+  check_text_lengths(name, bytes);
+  scan.srs_names = srs_names(bytes);
+  return scan;
+}
+
+// ---- Xerces: where malformed XML breaks ----------------------------------------------------
+
+std::string transcode(const XMLCh* text) {
+  if (!text) return "";
+  char* s = xercesc::XMLString::transcode(text);
+  std::string out = s ? s : "";
+  xercesc::XMLString::release(&s);
+  return out;
+}
+
+void init_xerces() {
+  static std::once_flag once;
+  std::call_once(once, [] { xercesc::XMLPlatformUtils::Initialize(); });
+}
+
+// A well-formedness pass of Xerces alone, run only when libcitygml reported an error: returns
+// "line:column: message" of the first fatal error, or "" if Xerces finds none.
+std::string first_xml_error(const std::string& bytes) {
+  init_xerces();
+  struct Handler : xercesc::DefaultHandler {};
+  Handler handler;
+  std::unique_ptr<xercesc::SAX2XMLReader> parser(xercesc::XMLReaderFactory::createXMLReader());
+  parser->setFeature(xercesc::XMLUni::fgSAX2CoreNameSpaces, false);
+  parser->setFeature(xercesc::XMLUni::fgXercesLoadExternalDTD, false);
+  parser->setContentHandler(&handler);
+  parser->setErrorHandler(&handler);
+  xercesc::MemBufInputSource source(reinterpret_cast<const XMLByte*>(bytes.data()), bytes.size(), "citygml");
+  try {
+    parser->parse(source);
+  } catch (const xercesc::SAXParseException& e) {
+    return std::to_string(e.getLineNumber()) + ":" + std::to_string(e.getColumnNumber()) + ": " + transcode(e.getMessage());
+  } catch (const xercesc::XMLException& e) {
+    return transcode(e.getMessage());
+  } catch (...) {
+    return "";
+  }
+  return "";
+}
+
+// ---- libcitygml's messages -----------------------------------------------------------------
+
+// Collects what libcitygml logs: errors, and the warnings that mean lost or misread data.
+class Logger : public citygml::CityGMLLogger {
+ public:
+  Logger() : CityGMLLogger(LOGLEVEL::LL_WARNING) {}
+  void log(LOGLEVEL level, const std::string& message, const char*, int) const override {
+    if (level == LOGLEVEL::LL_ERROR) {
+      if (error.empty()) error = message;
+    } else if (level == LOGLEVEL::LL_WARNING) {
+      warning(message);
+    }
+  }
+  mutable std::string error;            // the first error
+  mutable std::string bad_coordinates;  // the first "Mismatch type" (a posList that is not numbers)
+  mutable std::string bad_dimension;    // the first srsDimension ≠ 3
+  mutable std::map<std::string, std::size_t> unknown_elements;
+  mutable std::size_t missing_xlinks = 0, short_rings = 0, duplicate_exteriors = 0;
+  mutable std::string first_missing_xlink;
+
+ private:
+  void warning(const std::string& m) const {
+    if (m.find("Mismatch type") != std::string::npos) {
+      if (bad_coordinates.empty()) bad_coordinates = m;
+    } else if (m.find("srsDimension") != std::string::npos) {
+      if (bad_dimension.empty()) bad_dimension = m;
+    } else if (m.rfind("Found start tag of unknown node <", 0) == 0) {
+      const std::size_t b = 33, e = m.find('>', b);
+      if (e != std::string::npos && (unknown_elements.size() < 64 || unknown_elements.count(m.substr(b, e - b))))
+        ++unknown_elements[m.substr(b, e - b)];
+    } else if (m.find("requests Polygon with id") != std::string::npos) {
+      if (missing_xlinks++ == 0) first_missing_xlink = m;
+    } else if (m.find("contains less than 4 vertices") != std::string::npos) {
+      ++short_rings;
+    } else if (m.find("Duplicate definition of exterior") != std::string::npos) {
+      ++duplicate_exteriors;
+    }
+  }
+};
+
+// "line 12, column 5" out of a libcitygml message ("... at  line 12, column 5 in file x"), as "12:5".
+std::string location_of(const std::string& message) {
+  const std::size_t at = message.find("line ");
+  if (at == std::string::npos) return "";
+  long line = 0, column = 0;
+  if (std::sscanf(message.c_str() + at, "line %ld, column %ld", &line, &column) != 2) return "";
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+std::string without_file(std::string message) {
+  if (const std::size_t p = message.find(" in file "); p != std::string::npos) message.erase(p);
+  return message;
+}
+
+// ---- LoD -----------------------------------------------------------------------------------
+
+// A requested LoD "2" / "2.0" / "2.0.0" → 2; nullopt for what no CityGML LoD equals ("2.2").
+std::optional<unsigned> parse_requested_lod(const std::string& name, const std::string& text) {
+  std::vector<long long> parts;
+  std::size_t i = 0;
+  while (true) {
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(text.data() + i, text.data() + text.size(), v);
+    if (ec != std::errc() || v < 0) throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
+    parts.push_back(v);
+    i = static_cast<std::size_t>(end - text.data());
+    if (i == text.size()) break;
+    if (text[i] != '.' || i + 1 == text.size()) throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
+    ++i;
+  }
+  for (std::size_t k = 1; k < parts.size(); ++k)
+    if (parts[k] != 0) return std::nullopt;  // CityGML has integer LoDs 0–4
+  if (parts[0] > 4) return std::nullopt;
+  return static_cast<unsigned>(parts[0]);
+}
+
+// ---- The model walk ------------------------------------------------------------------------
+
+bool is_opening_or_boundary(Type t) {
+  switch (t) {
+    case Type::COT_WallSurface: case Type::COT_RoofSurface: case Type::COT_GroundSurface: case Type::COT_ClosureSurface:
+    case Type::COT_FloorSurface: case Type::COT_InteriorWallSurface: case Type::COT_CeilingSurface:
+    case Type::COT_OuterCeilingSurface: case Type::COT_OuterFloorSurface: case Type::COT_Door: case Type::COT_Window:
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool is_transportation(Type t) {
+  return t == Type::COT_Road || t == Type::COT_Track || t == Type::COT_Railway || t == Type::COT_Square ||
+         t == Type::COT_TransportationObject;
+}
+
+// A thematic surface: a semantic surface of the object above it, not an object of its own.
+bool is_thematic_surface(Type t, Type parent) {
+  if (is_opening_or_boundary(t)) return true;
+  if (t == Type::COT_TransportationObject && is_transportation(parent)) return true;  // (Auxiliary)TrafficArea
+  if (t == Type::COT_WaterBody && parent == Type::COT_WaterBody) return true;         // WaterSurface, WaterGroundSurface, ...
+  return false;
+}
+
+std::string surface_type_name(const CityObject& s) {
+  if (s.getType() == Type::COT_TransportationObject) return "TrafficArea";
+  return s.getTypeAsString();
+}
+
+std::string object_type_name(const CityObject& o) {
+  // libcitygml maps TransportationComplex (and its areas) to one type; at object level it is a complex.
+  if (o.getType() == Type::COT_TransportationObject) return "TransportationComplex";
+  return o.getTypeAsString();
+}
+
+struct ObjectEntry {
+  const CityObject* object = nullptr;
+  std::vector<const CityObject*> surfaces;  // thematic surfaces (openings of them included)
+  std::vector<std::uint32_t> children;      // child objects (BuildingPart, BuildingInstallation, ...)
+  std::set<unsigned> lods;                  // LoDs with at least one polygon
+  std::optional<unsigned> chosen;
+  bool implicit = false;                    // has implicit geometries (not read)
+};
+
+bool has_polygons(const citygml::Geometry& g) {
+  if (g.getPolygonsCount() > 0) return true;
+  for (unsigned i = 0; i < g.getGeometriesCount(); ++i)
+    if (has_polygons(g.getGeometry(i))) return true;
+  return false;
+}
+
+bool has_curves(const citygml::Geometry& g) {
+  if (g.getLineStringCount() > 0) return true;
+  for (unsigned i = 0; i < g.getGeometriesCount(); ++i)
+    if (has_curves(g.getGeometry(i))) return true;
+  return false;
+}
+
+void add_lods(const CityObject& o, std::set<unsigned>& lods) {
+  for (unsigned g = 0; g < o.getGeometriesCount(); ++g)
+    if (has_polygons(o.getGeometry(g))) lods.insert(o.getGeometry(g).getLOD());
+}
+
+// A hashable exact position (bit patterns), for sharing bit-identical vertices.
+struct PositionKey {
+  std::array<std::uint64_t, 3> bits;
+  bool operator==(const PositionKey&) const = default;
+};
+struct PositionHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const std::uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull ^ (b >> 29);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// What a read counts, then hands to the report.
+struct Counts {
+  std::size_t objects = 0, objects_with_geometry = 0, skipped_objects = 0, thematic_surfaces = 0, surfaces = 0,
+              surfaces_with_holes = 0;
+  std::map<std::string, std::size_t> lods_used;
+};
+
+// Notes aggregated by reason: "<count> x <reason> (first: <where>)".
+class Notes {
+ public:
+  void add(const std::string& reason, const std::string& example) {
+    auto [it, inserted] = counts_.try_emplace(reason, std::pair<std::size_t, std::string>{0, example});
+    if (inserted) order_.push_back(reason);
+    ++it->second.first;
+  }
+  void emit(std::vector<std::string>& out) const {
+    for (const std::string& reason : order_) {
+      const auto& [count, example] = counts_.at(reason);
+      out.push_back(std::to_string(count) + " x " + reason + (example.empty() ? "" : " (first: " + printable_text(example) + ")"));
+    }
+  }
+
+ private:
+  std::map<std::string, std::pair<std::size_t, std::string>> counts_;
+  std::vector<std::string> order_;
+};
+
+// The model's polygons as rings of raw coordinates (file CRS), gathered before any
+// reprojection so that every vertex can be projected in one pass.
+struct RawSurfaces {
+  std::vector<Vec3> coordinates;          // all rings' vertices, file order
+  std::vector<std::uint32_t> ring_start;  // ring r = coordinates[ring_start[r], ring_start[r + 1])
+  struct Surface {
+    std::uint32_t object, material, first_ring, rings;
+  };
+  std::vector<Surface> surfaces;
+};
+
+class ModelWalk {
+ public:
+  ModelWalk(const std::string& file, std::optional<unsigned> requested, bool lod_set, TriangleSoup& soup, RawSurfaces& raw,
+            Counts& counts, Notes& notes)
+      : file_(file), requested_(requested), lod_set_(lod_set), soup_(soup), raw_(raw), counts_(counts), notes_(notes) {
+    raw_.ring_start.assign(1, 0);
+  }
+
+  void read(const citygml::CityModel& model) {
+    for (unsigned i = 0; i < model.getNumRootCityObjects(); ++i) collect(model.getRootCityObject(i), kNone);
+    for (ObjectEntry& e : entries_) e.chosen = choose(e);
+    for (ObjectEntry& e : entries_) read_object(e);
+  }
+
+ private:
+  // Flattens the object tree into entries (objects), thematic surfaces attached to their object.
+  void collect(const CityObject& o, std::uint32_t parent) {
+    const auto index = static_cast<std::uint32_t>(entries_.size());
+    entries_.push_back({});
+    entries_[index].object = &o;
+    if (parent != kNone) entries_[parent].children.push_back(index);
+    add_lods(o, entries_[index].lods);
+    entries_[index].implicit = o.getImplicitGeometryCount() > 0;
+    for (unsigned c = 0; c < o.getChildCityObjectsCount(); ++c) {
+      const CityObject& child = o.getChildCityObject(c);
+      if (is_thematic_surface(child.getType(), o.getType()))
+        attach_surface(child, index);
+      else
+        collect(child, index);
+    }
+  }
+
+  void attach_surface(const CityObject& s, std::uint32_t owner) {
+    entries_[owner].surfaces.push_back(&s);
+    add_lods(s, entries_[owner].lods);
+    if (s.getImplicitGeometryCount() > 0) entries_[owner].implicit = true;
+    for (unsigned c = 0; c < s.getChildCityObjectsCount(); ++c) attach_surface(s.getChildCityObject(c), owner);  // openings
+  }
+
+  std::optional<unsigned> choose(const ObjectEntry& e) const {
+    if (e.lods.empty()) return std::nullopt;
+    if (lod_set_) {
+      if (requested_ && e.lods.count(*requested_)) return requested_;
+      return std::nullopt;
+    }
+    return *e.lods.rbegin();
+  }
+
+  void read_object(const ObjectEntry& e) {
+    ++counts_.objects;
+    const CityObject& o = *e.object;
+    if (e.implicit) notes_.add("objects with implicit geometries (templates): those are not read", o.getId());
+    if (e.lods.empty()) {
+      if (e.implicit) ++counts_.skipped_objects;
+      return;  // no geometry of its own: fine (a parent whose children carry it)
+    }
+    if (!e.chosen) {
+      ++counts_.skipped_objects;
+      notes_.add("objects skipped: no geometry of the requested LoD", o.getId());
+      return;
+    }
+    if (!lod_set_) {
+      std::optional<unsigned> best_child;
+      for (const std::uint32_t c : e.children)
+        if (entries_[c].chosen && (!best_child || *entries_[c].chosen > *best_child)) best_child = entries_[c].chosen;
+      if (best_child && *e.chosen < *best_child) {
+        ++counts_.skipped_objects;
+        notes_.add("parent objects skipped: their highest LoD is below their children's (LoD " + std::to_string(*e.chosen) +
+                       " parent, LoD " + std::to_string(*best_child) + " children)",
+                   o.getId());
+        return;
+      }
+    }
+    object_name_ = &o.getId();
+    object_index_ = kNone;
+    const std::size_t before = counts_.surfaces;
+    // Thematic surfaces first: a polygon that the object's solid references again is read with
+    // its surface type.
+    for (const CityObject* s : e.surfaces) {
+      const std::size_t s_before = counts_.surfaces;
+      for (unsigned g = 0; g < s->getGeometriesCount(); ++g) read_geometry(s->getGeometry(g), *e.chosen, surface_type_name(*s));
+      if (counts_.surfaces > s_before) ++counts_.thematic_surfaces;
+    }
+    for (unsigned g = 0; g < o.getGeometriesCount(); ++g) read_geometry(o.getGeometry(g), *e.chosen, object_type_name(o));
+    if (counts_.surfaces > before) {
+      ++counts_.objects_with_geometry;
+      ++counts_.lods_used[std::to_string(*e.chosen)];
+    } else {
+      ++counts_.skipped_objects;
+      notes_.add("objects skipped: no readable polygon at their LoD", o.getId());
+    }
+  }
+
+  void read_geometry(const citygml::Geometry& g, unsigned lod, const std::string& material) {
+    if (g.getLOD() != lod) return;
+    if (g.getLineStringCount() > 0) notes_.add("curve geometries (lines) not read: no area", *object_name_);
+    for (unsigned p = 0; p < g.getPolygonsCount(); ++p) read_polygon(*g.getPolygon(p), material);
+    for (unsigned c = 0; c < g.getGeometriesCount(); ++c) read_geometry(g.getGeometry(c), lod, material);
+  }
+
+  // One ring into raw_.coordinates, cleaned: closing vertex and consecutive repeats removed.
+  // Returns false (and adds nothing) for fewer than 3 distinct positions.
+  bool add_ring(const std::vector<TVec3d>& ring, const std::string& where) {
+    const std::size_t start = raw_.coordinates.size();
+    for (const auto& v : ring) {
+      const Vec3 p(v.x, v.y, v.z);
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+        throw InputError(file_ + ": polygon " + printable_text(where) + " of object " + printable_text(*object_name_) +
+                         ": non-finite coordinate");
+      if (raw_.coordinates.size() > start && raw_.coordinates.back() == p) {
+        if (ring.size() > 1 && &v != &ring.back()) notes_.add("repeated consecutive vertices removed", where);
+        continue;
+      }
+      raw_.coordinates.push_back(p);
+    }
+    if (raw_.coordinates.size() - start > 1 && raw_.coordinates.back() == raw_.coordinates[start]) raw_.coordinates.pop_back();
+    std::vector<Vec3> distinct(raw_.coordinates.begin() + static_cast<std::ptrdiff_t>(start), raw_.coordinates.end());
+    std::sort(distinct.begin(), distinct.end(), [](const Vec3& a, const Vec3& b) {
+      return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+    });
+    if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) {
+      raw_.coordinates.resize(start);
+      return false;
+    }
+    raw_.ring_start.push_back(static_cast<std::uint32_t>(raw_.coordinates.size()));
+    return true;
+  }
+
+  void read_polygon(const citygml::Polygon& polygon, const std::string& material) {
+    if (!read_polygons_.insert(&polygon).second) {
+      notes_.add("polygons referenced twice (xlink:href): read once", polygon.getId());
+      return;
+    }
+    const auto outer = polygon.exteriorRing();
+    if (!outer) {
+      notes_.add("polygons skipped: no exterior ring", polygon.getId());
+      return;
+    }
+    const auto first_ring = static_cast<std::uint32_t>(raw_.ring_start.size() - 1);
+    if (!add_ring(outer->getVertices(), polygon.getId())) {
+      notes_.add("surfaces skipped: outer ring with fewer than 3 distinct vertices", polygon.getId());
+      return;
+    }
+    for (const auto& inner : polygon.interiorRings())
+      if (!add_ring(inner->getVertices(), polygon.getId())) notes_.add("inner rings (holes) skipped: fewer than 3 distinct vertices", polygon.getId());
+    if (object_index_ == kNone) {
+      object_index_ = static_cast<std::uint32_t>(soup_.object_names.size());
+      soup_.object_names.push_back(*object_name_);
+    }
+    const auto rings = static_cast<std::uint32_t>(raw_.ring_start.size() - 1) - first_ring;
+    raw_.surfaces.push_back({object_index_, material_index(material), first_ring, rings});
+    ++counts_.surfaces;
+  }
+
+  std::uint32_t material_index(const std::string& name) {
+    const auto [it, inserted] = materials_.try_emplace(name, static_cast<std::uint32_t>(soup_.material_names.size()));
+    if (inserted) soup_.material_names.push_back(name);
+    return it->second;
+  }
+
+  const std::string& file_;
+  std::optional<unsigned> requested_;
+  bool lod_set_;
+  TriangleSoup& soup_;
+  RawSurfaces& raw_;
+  Counts& counts_;
+  Notes& notes_;
+  std::vector<ObjectEntry> entries_;
+  std::unordered_set<const citygml::Polygon*> read_polygons_;
+  std::unordered_map<std::string, std::uint32_t> materials_;
+  const std::string* object_name_ = nullptr;
+  std::uint32_t object_index_ = kNone;
+};
+
+// Shares bit-identical positions and triangulates every surface into the soup.
+void triangulate_surfaces(const RawSurfaces& raw, TriangleSoup& soup, Counts& counts, Notes& notes) {
+  std::unordered_map<PositionKey, std::uint32_t, PositionHash> index;
+  index.reserve(raw.coordinates.size());
+  std::vector<std::uint32_t> vertex_of(raw.coordinates.size());
+  for (std::size_t i = 0; i < raw.coordinates.size(); ++i) {
+    const Vec3& p = raw.coordinates[i];
+    const PositionKey key{{std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y()), std::bit_cast<std::uint64_t>(p.z())}};
+    const auto [it, inserted] = index.try_emplace(key, static_cast<std::uint32_t>(soup.vertices.size()));
+    if (inserted) soup.vertices.push_back(p);
+    vertex_of[i] = it->second;
+  }
+  std::vector<std::vector<std::uint32_t>> rings;
+  for (const RawSurfaces::Surface& s : raw.surfaces) {
+    rings.resize(s.rings);
+    for (std::uint32_t r = 0; r < s.rings; ++r) {
+      const std::uint32_t b = raw.ring_start[s.first_ring + r], e = raw.ring_start[s.first_ring + r + 1];
+      rings[r].assign(vertex_of.begin() + b, vertex_of.begin() + e);
+    }
+    const PolygonWithHolesTriangulation t = triangulate_polygon_with_holes(soup.vertices, rings);
+    if (t.holes_dropped) notes.add("surfaces with crossing rings: holes not cut out (surface filled)", "");
+    if (t.method == PolygonTriangulationMethod::kFanZeroArea) notes.add("zero-area surfaces (fan-triangulated)", "");
+    if (t.method == PolygonTriangulationMethod::kFanSelfIntersecting) notes.add("self-crossing surfaces (fan-triangulated)", "");
+    for (const auto& tri : t.triangles) {
+      soup.triangles.push_back(tri);
+      soup.triangle_material.push_back(s.material);
+      soup.triangle_object.push_back(s.object);
+    }
+    if (s.rings > 1 && !t.holes_dropped) ++counts.surfaces_with_holes;
+  }
+}
+
+// libcitygml on the file's bytes; every way it can fail becomes an InputError.
+std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, const std::string& bytes, Logger& logger,
+                                                     std::shared_ptr<Logger> shared_logger) {
+  citygml::ParserParams params;
+  params.tesselate = false;  // rings as written: we triangulate (holes included) ourselves
+  params.optimize = false;   // no merging of polygons, no vertex removal
+  params.keepVertices = true;
+  std::shared_ptr<const citygml::CityModel> model;
+  std::string thrown;
+  try {
+    std::istringstream stream(bytes);
+    model = citygml::load(stream, params, shared_logger);
+  } catch (const xercesc::SAXParseException& e) {
+    thrown = std::to_string(e.getLineNumber()) + ":" + std::to_string(e.getColumnNumber()) + ": " + transcode(e.getMessage());
+  } catch (const xercesc::XMLException& e) {
+    thrown = transcode(e.getMessage());
+  } catch (const std::exception& e) {
+    thrown = e.what();
+  } catch (...) {
+    thrown = "unknown exception";
+  }
+  if (!thrown.empty() || !logger.error.empty() || !model) {
+    const std::string xml = first_xml_error(bytes);
+    if (!xml.empty()) throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML)");
+    const std::string what = !thrown.empty() ? thrown : !logger.error.empty() ? without_file(logger.error) : "no CityModel in the file";
+    const std::string at = location_of(logger.error);
+    throw InputError(name + (at.empty() ? "" : ":" + at) + ": libcitygml: " + printable_text(what).substr(0, 300));
+  }
+  if (!logger.bad_coordinates.empty())
+    throw InputError(name + ":" + location_of(logger.bad_coordinates) +
+                     ": a coordinate list (gml:posList / gml:pos) holds something that is not a finite number");
+  if (!logger.bad_dimension.empty())
+    throw InputError(name + ":" + location_of(logger.bad_dimension) + ": srsDimension is not 3 (only 3D coordinates are read)");
+  return model;
+}
+
+// The CRS: one set of EPSG codes in all srsNames; geographic → reprojected, geocentric refused.
+void apply_crs(const std::string& name, const FileScan& scan, RawSurfaces& raw, CityGmlReport& report) {
+  if (scan.srs_names.empty()) {
+    report.notes.push_back("no srsName: coordinates taken as metres in an unknown projected CRS");
+    return;
+  }
+  const std::string& srs = scan.srs_names.front();
+  for (const std::string& other : scan.srs_names)
+    if (crs_epsg_codes(other) != crs_epsg_codes(srs))
+      throw InputError(name + ": mixed CRSs: srsName '" + printable_text(srs) + "' and '" + printable_text(other) + "'");
+  report.crs_in_file = srs;
+  report.crs = srs;
+  const CrsInfo info = classify_crs(srs);
+  if (info.kind == CrsKind::geocentric)
+    throw InputError(name + ": srsName '" + printable_text(srs) + "' is a geocentric CRS (z is not up); reproject to a projected CRS first");
+  if (info.kind == CrsKind::unknown)
+    report.notes.push_back("srsName '" + printable_text(srs) + "' is not a CRS PROJ knows: coordinates taken as metres");
+  if (info.kind != CrsKind::geographic) return;
+  if (info.epsg == 0 || info.name.empty())
+    throw InputError(name + ": srsName '" + printable_text(srs) + "' is geographic (degrees) and PROJ does not know it: cannot reproject");
+  const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates);
+  report.crs = r.target_crs;
+  report.reprojection = r.description;
+}
+
+TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlReadOptions& options, CityGmlReport* report) {
+  const std::string name = file.string();
+  std::optional<unsigned> requested;
+  if (options.lod) requested = parse_requested_lod(name, *options.lod);
+  const std::string bytes = read_bytes(file);
+  const FileScan scan = scan_bytes(name, bytes);
+
+  auto logger = std::make_shared<Logger>();
+  const auto model = load_model(name, bytes, *logger, logger);
+
+  CityGmlReport r;
+  r.file = name;
+  r.format = "CityGML " + scan.version;
+  TriangleSoup soup;
+  RawSurfaces raw;
+  Counts counts;
+  Notes notes;
+  ModelWalk(name, requested, options.lod.has_value(), soup, raw, counts, notes).read(*model);
+  apply_crs(name, scan, raw, r);
+  triangulate_surfaces(raw, soup, counts, notes);
+
+  r.objects = counts.objects;
+  r.objects_with_geometry = counts.objects_with_geometry;
+  r.skipped_objects = counts.skipped_objects;
+  r.thematic_surfaces = counts.thematic_surfaces;
+  r.surfaces = counts.surfaces;
+  r.surfaces_with_holes = counts.surfaces_with_holes;
+  r.triangles = soup.triangles.size();
+  r.vertices = soup.vertices.size();
+  r.lods_used = counts.lods_used;
+  if (!r.reprojection.empty()) r.notes.push_back(r.reprojection);
+  notes.emit(r.notes);
+  for (const auto& [element, n] : logger->unknown_elements)
+    r.notes.push_back(std::to_string(n) + " x <" + printable_text(element) + "> not read by libcitygml (skipped with its content)");
+  if (logger->missing_xlinks)
+    r.notes.push_back(std::to_string(logger->missing_xlinks) + " xlink:href to polygons that do not exist (first: " +
+                      printable_text(without_file(logger->first_missing_xlink)).substr(0, 200) + ")");
+  if (logger->short_rings) r.notes.push_back(std::to_string(logger->short_rings) + " rings with fewer than 4 positions in the file");
+  if (logger->duplicate_exteriors)
+    r.notes.push_back(std::to_string(logger->duplicate_exteriors) + " polygons with a second exterior ring: the first one kept");
+  if (r.triangles == 0)
+    throw InputError(name + ": no triangles (" + std::to_string(r.objects) + " city objects, " + std::to_string(r.skipped_objects) +
+                     " skipped" + (options.lod ? ", requested LoD " + printable_text(*options.lod) : std::string()) + ")");
+  if (report) *report = std::move(r);
+  return soup;
+}
+
+}  // namespace
+
+bool is_citygml_path(const std::filesystem::path& file) {
+  const std::string ext = lower(file.extension().string());
+  return ext == ".gml" || ext == ".xml" || ext == ".citygml";
+}
+
+std::string CityGmlReport::summary() const {
+  std::ostringstream os;
+  os << file << ": " << format << (crs.empty() ? ", no CRS" : ", CRS " + crs) << "\n";
+  os << "  " << objects << " objects, " << objects_with_geometry << " read, " << skipped_objects << " skipped; "
+     << thematic_surfaces << " thematic surfaces; " << surfaces << " polygons (" << surfaces_with_holes << " with holes) -> "
+     << triangles << " triangles, " << vertices << " vertices\n";
+  os << "  LoDs:";
+  for (const auto& [lod, n] : lods_used) os << " " << lod << " (" << n << " objects)";
+  os << "\n";
+  for (const std::string& n : notes) os << "  note: " << n << "\n";
+  return os.str();
+}
+
+TriangleSoup read_citygml(const std::filesystem::path& file, const CityGmlReadOptions& options, CityGmlReport* report) {
+  try {
+    return read_unguarded(file, options, report);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    // triangulate_polygon_with_holes rejects what the walk above never hands it; a safety net.
+    throw InputError(file.string() + ": malformed CityGML (" + printable_text(e.what()) + ")");
+  }
+}
+
+}  // namespace skyband
