@@ -1,0 +1,457 @@
+#define BOOST_TEST_MODULE citygml_reader
+#include <boost/test/unit_test.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/input_error.h"
+#include "io/citygml_reader.h"
+#include "io/mesh_reader.h"
+#include "lighting/climate_irradiation.h"
+#include "shared_data.h"
+
+using namespace skyband;
+namespace fs = std::filesystem;
+namespace tt = boost::test_tools;
+
+namespace {
+
+fs::path shared(const std::string& name) { return fs::path(SKYBAND_SHARED_DATA) / "citygml" / name; }
+const char* kTokyo2 = "plateau_tokyo_53394517_bldg_6697_2_op.citygml2.gml";
+const char* kTokyo3 = "plateau_tokyo_53394517_bldg_6697_2_op.citygml3.gml";
+const char* kYokosuka = "plateau_yokosuka_52397519_bldg_6697_op.citygml2.gml";
+const char* kLyon3 = "lyon_opera_CityGML3.0_LOD2.gml";
+
+fs::path temp_path() { return fs::temp_directory_path() / ("skyband_citygml_reader_test_" + std::to_string(::getpid())); }
+
+fs::path write_file(const std::string& name, const std::string& text) {
+  fs::create_directories(temp_path());
+  const fs::path p = temp_path() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The message of the InputError that f throws ("" if none is thrown).
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// ---- Hand-made CityGML ---------------------------------------------------------------------
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// A closed ring as a gml:posList (first vertex repeated at the end, as GML requires).
+std::string pos_list(const std::vector<Vec3>& ring) {
+  std::string out = "<gml:posList srsDimension=\"3\">";
+  for (std::size_t i = 0; i <= ring.size(); ++i) {
+    const Vec3& p = ring[i % ring.size()];
+    out += number(p.x()) + " " + number(p.y()) + " " + number(p.z()) + (i < ring.size() ? " " : "");
+  }
+  return out + "</gml:posList>";
+}
+
+std::string polygon(const std::string& id, const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes = {}) {
+  std::string out = "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>" + pos_list(outer) +
+                    "</gml:LinearRing></gml:exterior>";
+  for (const auto& h : holes) out += "<gml:interior><gml:LinearRing>" + pos_list(h) + "</gml:LinearRing></gml:interior>";
+  return out + "</gml:Polygon>";
+}
+
+std::string multi_surface(const std::vector<std::string>& polygons) {
+  std::string out = "<gml:MultiSurface>";
+  for (const auto& p : polygons) out += "<gml:surfaceMember>" + p + "</gml:surfaceMember>";
+  return out + "</gml:MultiSurface>";
+}
+
+std::string document(const std::string& version, const std::string& srs, const std::string& members) {
+  const std::string ns = "http://www.opengis.net/citygml/";
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"" + ns + version + "\" xmlns:bldg=\"" + ns +
+         "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version +
+         "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">\n"
+         "<gml:boundedBy><gml:Envelope srsName=\"" + srs + "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
+         "<gml:upperCorner>1 1 1</gml:upperCorner></gml:Envelope></gml:boundedBy>\n" + members + "</core:CityModel>\n";
+}
+
+// The box [lo, lo + (dx, dy, dz)]: its six faces as rings (outward, counter-clockwise seen from outside).
+struct Box {
+  Vec3 lo;
+  double dx, dy, dz;
+  Vec3 at(double x, double y, double z) const { return lo + Vec3(x * dx, y * dy, z * dz); }
+  std::vector<Vec3> ground() const { return {at(0, 0, 0), at(0, 1, 0), at(1, 1, 0), at(1, 0, 0)}; }
+  std::vector<Vec3> roof() const { return {at(0, 0, 1), at(1, 0, 1), at(1, 1, 1), at(0, 1, 1)}; }
+  std::vector<Vec3> south() const { return {at(0, 0, 0), at(1, 0, 0), at(1, 0, 1), at(0, 0, 1)}; }
+  std::vector<Vec3> east() const { return {at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1)}; }
+  std::vector<Vec3> north() const { return {at(1, 1, 0), at(0, 1, 0), at(0, 1, 1), at(1, 1, 1)}; }
+  std::vector<Vec3> west() const { return {at(0, 1, 0), at(0, 0, 0), at(0, 0, 1), at(0, 1, 1)}; }
+};
+
+// <bldg:boundedBy> with one thematic surface (LoD 2 polygons).
+std::string thematic_surface(const std::string& type, const std::string& id, const std::vector<std::string>& polygons) {
+  return "<bldg:boundedBy><bldg:" + type + " gml:id=\"" + id + "\"><bldg:lod2MultiSurface>" + multi_surface(polygons) +
+         "</bldg:lod2MultiSurface></bldg:" + type + "></bldg:boundedBy>";
+}
+
+// A box building: LoD 2 as thematic surfaces (the south wall with a 2 m × 1 m window hole) and a
+// lod2Solid referencing them by xlink (as PLATEAU writes it), plus an LoD 1 solid of its own polygons.
+std::string box_building(const std::string& id, const Box& b, bool lod1 = true, bool lod2 = true, const std::string& tag = "Building") {
+  std::string out = "<bldg:" + tag + " gml:id=\"" + id + "\">";
+  if (lod1) {
+    out += "<bldg:lod1Solid><gml:Solid><gml:exterior><gml:CompositeSurface>";
+    for (const auto& [n, ring] : std::vector<std::pair<std::string, std::vector<Vec3>>>{
+             {"g", b.ground()}, {"r", b.roof()}, {"s", b.south()}, {"e", b.east()}, {"n", b.north()}, {"w", b.west()}})
+      out += "<gml:surfaceMember>" + polygon(id + "_l1_" + n, ring) + "</gml:surfaceMember>";
+    out += "</gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod1Solid>";
+  }
+  if (lod2) {
+    out += "<bldg:lod2Solid><gml:Solid><gml:exterior><gml:CompositeSurface>";
+    for (const char* n : {"g", "r", "s", "e", "n", "w"}) out += "<gml:surfaceMember xlink:href=\"#" + id + "_" + n + "\"/>";
+    out += "</gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod2Solid>";
+    const std::vector<Vec3> hole{b.lo + Vec3(4, 0, 2), b.lo + Vec3(4, 0, 3), b.lo + Vec3(6, 0, 3), b.lo + Vec3(6, 0, 2)};
+    out += thematic_surface("GroundSurface", id + "_gs", {polygon(id + "_g", b.ground())});
+    out += thematic_surface("RoofSurface", id + "_rs", {polygon(id + "_r", b.roof())});
+    out += thematic_surface("WallSurface", id + "_ws", {polygon(id + "_s", b.south(), {hole})});
+    out += thematic_surface("WallSurface", id + "_ws2", {polygon(id + "_e", b.east()), polygon(id + "_n", b.north()), polygon(id + "_w", b.west())});
+  }
+  return out + "</bldg:" + tag + ">";
+}
+
+std::string member(const std::string& object) { return "<core:cityObjectMember>" + object + "</core:cityObjectMember>\n"; }
+
+const Box kBox{Vec3(500000.25, 5400000.5, 10.125), 10, 20, 5};
+const char* kProjected = "urn:ogc:def:crs:EPSG::25832";  // ETRS89 / UTM zone 32N
+
+double area_m2(const TriangleSoup& s, std::size_t t) {
+  const auto& tri = s.triangles[t];
+  return 0.5 * (s.vertices[tri[1]] - s.vertices[tri[0]]).cross(s.vertices[tri[2]] - s.vertices[tri[0]]).norm();
+}
+
+std::map<std::string, double> area_by_material(const TriangleSoup& s) {
+  std::map<std::string, double> out;
+  for (std::size_t t = 0; t < s.triangle_count(); ++t) out[s.material_names.at(s.triangle_material.at(t))] += area_m2(s, t);
+  return out;
+}
+
+// ---- An independent walk of the real files (plain string scanning, no XML library) --------
+
+struct XmlWalk {
+  std::size_t polygons = 0, triangles = 0;  // triangles: Σ over rings of (distinct consecutive vertices − 2)
+};
+
+// Polygons inside every <bldg:ELEMENT>...</bldg:ELEMENT> block: each posList's vertices with
+// consecutive repeats and the closing repeat removed give n − 2 triangles (no ring has holes in
+// these files: the walk checks).
+XmlWalk walk_blocks(const std::string& text, const std::string& element) {
+  XmlWalk w;
+  const std::string open = "<bldg:" + element + ">", close = "</bldg:" + element + ">";
+  for (std::size_t b = text.find(open); b != std::string::npos; b = text.find(open, b + 1)) {
+    const std::size_t e = text.find(close, b);
+    const std::string block = text.substr(b, e - b);
+    BOOST_REQUIRE(block.find("<gml:interior") == std::string::npos);
+    for (std::size_t p = block.find("<gml:Polygon"); p != std::string::npos; p = block.find("<gml:Polygon", p + 1)) ++w.polygons;
+    for (std::size_t p = block.find("<gml:posList"); p != std::string::npos; p = block.find("<gml:posList", p + 1)) {
+      const std::size_t start = block.find('>', p) + 1, end = block.find('<', start);
+      std::istringstream in(block.substr(start, end - start));
+      std::vector<std::array<std::string, 3>> ring;
+      std::array<std::string, 3> v;
+      while (in >> v[0] >> v[1] >> v[2])
+        if (ring.empty() || ring.back() != v) ring.push_back(v);
+      if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+      w.triangles += ring.size() - 2;
+    }
+  }
+  return w;
+}
+
+// ---- UTM forward by the Krüger series (Karney 2011, J. Geodesy 85, eqs. 7, 9, 35), to n⁴ ----
+// (truncation error ~n⁵·a ≈ 10⁻⁷ m), on GRS80, independent of PROJ.
+Vec3 utm_forward(double lat_deg, double lon_deg, int zone) {
+  const double a = 6378137.0, f = 1 / 298.257222101, k0 = 0.9996, pi = std::acos(-1.0);
+  const double n = f / (2 - f), n2 = n * n, n3 = n2 * n, n4 = n3 * n;
+  const double A = a / (1 + n) * (1 + n2 / 4 + n4 / 64);
+  const double alpha[4] = {n / 2 - 2 * n2 / 3 + 5 * n3 / 16 + 41 * n4 / 180, 13 * n2 / 48 - 3 * n3 / 5 + 557 * n4 / 1440,
+                           61 * n3 / 240 - 103 * n4 / 140, 49561 * n4 / 161280};
+  const double phi = lat_deg * pi / 180, lambda = (lon_deg - (6 * zone - 183)) * pi / 180;
+  const double e = 2 * std::sqrt(n) / (1 + n);
+  const double t = std::sinh(std::atanh(std::sin(phi)) - e * std::atanh(e * std::sin(phi)));
+  const double xi1 = std::atan2(t, std::cos(lambda)), eta1 = std::atanh(std::sin(lambda) / std::sqrt(1 + t * t));
+  double xi = xi1, eta = eta1;
+  for (int j = 1; j <= 4; ++j) {
+    xi += alpha[j - 1] * std::sin(2 * j * xi1) * std::cosh(2 * j * eta1);
+    eta += alpha[j - 1] * std::cos(2 * j * xi1) * std::sinh(2 * j * eta1);
+  }
+  return Vec3(500000 + k0 * A * eta, k0 * A * xi, 0);
+}
+
+// The first vertex (latitude, longitude, height) of the first posList after `after` in `text`.
+Vec3 first_position(const std::string& text, const std::string& after) {
+  const std::size_t p = text.find("<gml:posList", text.find(after));
+  std::istringstream in(text.substr(text.find('>', p) + 1, 200));
+  Vec3 v;
+  in >> v[0] >> v[1] >> v[2];
+  return v;
+}
+
+}  // namespace
+
+// ---- Hand-made files -----------------------------------------------------------------------
+
+BOOST_AUTO_TEST_CASE(box_areas_materials_and_objects_in_closed_form) {
+  const fs::path file = write_file("box.gml", document("2.0", kProjected, member(box_building("box1", kBox))));
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(file, {}, &report);
+  // LoD 2 (the highest): ground and roof 10 × 20, walls 2·(10·5 + 20·5) minus the 2 m² window hole.
+  const auto areas = area_by_material(s);
+  BOOST_TEST(areas.size() == 3u);
+  BOOST_TEST(areas.at("GroundSurface") == 200.0, tt::tolerance(1e-9));
+  BOOST_TEST(areas.at("RoofSurface") == 200.0, tt::tolerance(1e-9));
+  BOOST_TEST(areas.at("WallSurface") == 298.0, tt::tolerance(1e-9));
+  // 6 polygons once each although the lod2Solid references them again; 5 quads give 2 triangles
+  // each, the wall with its hole 8 (4 + 4 vertices, one hole: n + 2h − 2 = 8).
+  BOOST_TEST(report.surfaces == 6u);
+  BOOST_TEST(report.surfaces_with_holes == 1u);
+  BOOST_TEST(s.triangle_count() == 18u);
+  BOOST_TEST(report.thematic_surfaces == 4u);
+  BOOST_TEST(report.objects == 1u);
+  BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"2", 1}}));
+  BOOST_TEST(report.format == "CityGML 2.0");
+  BOOST_TEST(report.crs == kProjected);
+  BOOST_TEST(report.reprojection.empty());
+  // Every triangle belongs to box1; 8 box corners + 4 hole corners, shared.
+  BOOST_TEST(s.object_names == std::vector<std::string>{"box1"});
+  BOOST_TEST(s.triangle_object == std::vector<std::uint32_t>(18, 0));
+  BOOST_TEST(s.vertices.size() == 12u);
+  // Coordinates verbatim: each vertex is exactly a corner written in the file.
+  std::set<std::array<double, 3>> written;
+  for (const auto& ring : {kBox.ground(), kBox.roof()})
+    for (const Vec3& p : ring) written.insert({p.x(), p.y(), p.z()});
+  for (const Vec3& p : s.vertices) {
+    const bool hole = p.y() == kBox.lo.y() && (p.z() == kBox.lo.z() + 2 || p.z() == kBox.lo.z() + 3);
+    BOOST_TEST((hole || written.count({p.x(), p.y(), p.z()}) == 1));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
+  const fs::path file = write_file("box_lods.gml", document("2.0", kProjected, member(box_building("box1", kBox))));
+  CityGmlReport report;
+  const TriangleSoup lod1 = read_citygml(file, {std::string("1")}, &report);
+  BOOST_TEST(lod1.triangle_count() == 12u);  // the LoD 1 solid: 6 quads, no hole
+  BOOST_TEST((area_by_material(lod1) == std::map<std::string, double>{{"Building", 700.0}}));
+  BOOST_TEST(read_citygml(file, {std::string("2.0")}).triangle_count() == 18u);  // "2.0" = "2"
+  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("3")}); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("2.2")}); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("two")}); }).find("is not a LoD") != std::string::npos);
+
+  // A Building with an LoD 1 solid and a BuildingPart at LoD 2: by default the part alone (the
+  // parent's LoD 1 would duplicate it); at LoD 1 the parent alone (the part has no LoD 1).
+  const Box part{kBox.lo + Vec3(30, 0, 0), 10, 20, 5};
+  std::string parent = box_building("parent", kBox, true, false);
+  parent.insert(parent.rfind("</bldg:Building>"),
+                "<bldg:consistsOfBuildingPart>" + box_building("part", part, false, true, "BuildingPart") + "</bldg:consistsOfBuildingPart>");
+  const fs::path parts = write_file("parts.gml", document("2.0", kProjected, member(parent)));
+  const TriangleSoup by_default = read_citygml(parts, {}, &report);
+  BOOST_TEST(by_default.object_names == std::vector<std::string>{"part"});
+  BOOST_TEST(report.objects == 2u);
+  BOOST_TEST(report.skipped_objects == 1u);
+  BOOST_TEST(by_default.triangle_count() == 18u);
+  const TriangleSoup at_lod1 = read_citygml(parts, {std::string("1")}, &report);
+  BOOST_TEST(at_lod1.object_names == std::vector<std::string>{"parent"});
+  BOOST_TEST(report.skipped_objects == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(terrain_classes_are_ground_and_citygml_1_0_reads) {
+  const std::vector<Vec3> field{kBox.lo + Vec3(-50, -50, 0), kBox.lo + Vec3(50, -50, 0), kBox.lo + Vec3(50, 50, 0),
+                                kBox.lo + Vec3(-50, 50, 0)};
+  const std::string land = "<luse:LandUse gml:id=\"field\"><luse:lod1MultiSurface>" + multi_surface({polygon("f", field)}) +
+                           "</luse:lod1MultiSurface></luse:LandUse>";
+  for (const std::string version : {"1.0", "2.0"}) {
+    CityGmlReport report;
+    const TriangleSoup s =
+        read_citygml(write_file("land" + version + ".gml", document(version, kProjected, member(box_building("b", kBox)) + member(land))), {}, &report);
+    BOOST_TEST(report.format == "CityGML " + version);
+    const std::vector<bool> ground = ground_triangle_mask(s, default_ground_materials());
+    double ground_m2 = 0;
+    for (std::size_t t = 0; t < s.triangle_count(); ++t)
+      if (ground[t]) ground_m2 += area_m2(s, t);
+    BOOST_TEST(ground_m2 == 100.0 * 100.0, tt::tolerance(1e-9));  // the LandUse field, not the building
+    BOOST_TEST(area_by_material(s).at("LandUse") == 1e4, tt::tolerance(1e-9));
+    BOOST_TEST(s.object_names.size() == 2u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(read_mesh_dispatches_and_reports_the_crs) {
+  const fs::path file = write_file("box.citygml", document("2.0", kProjected, member(box_building("box1", kBox))));
+  MeshReadReport report;
+  const TriangleSoup s = read_mesh(file, &report);
+  BOOST_TEST(s.triangle_count() == 18u);
+  BOOST_TEST(report.format == "CityGML 2.0");
+  BOOST_TEST(report.crs == kProjected);
+  BOOST_TEST(report.faces_read == 6u);
+  BOOST_TEST(report.summary().find("1 of 1 city objects read") != std::string::npos);
+  MeshReadOptions lod1;
+  lod1.lod = "1";
+  BOOST_TEST(read_mesh(file, nullptr, lod1).triangle_count() == 12u);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
+  const std::string good = document("2.0", kProjected, member(box_building("box1", kBox)));
+  auto error_of = [](const std::string& name, const std::string& text) {
+    const fs::path p = write_file(name, text);
+    const std::string e = input_error([&] { read_citygml(p); });
+    BOOST_TEST(e.find(p.string()) == 0u, name << ": " << e);
+    BOOST_TEST(e.find('\n') == std::string::npos);
+    return e;
+  };
+  BOOST_TEST(error_of("empty.gml", "").find("not XML") != std::string::npos);
+  BOOST_TEST(error_of("binary.gml", std::string("\x01\x02\xff\x00garbage", 11)).find("not XML") != std::string::npos);
+  // Cut in the middle: Xerces' message with line:column.
+  const std::string cut = error_of("cut.gml", good.substr(0, good.size() / 2));
+  BOOST_TEST(cut.find("malformed XML") != std::string::npos, cut);
+  BOOST_TEST(error_of("mismatched.gml", good.substr(0, good.find("</core:cityObjectMember>")) + "</wrong></core:CityModel>")
+                 .find("malformed XML") != std::string::npos);
+  std::string nan = good;
+  nan.replace(nan.find("10.125"), 6, "nan");
+  BOOST_TEST(error_of("nan.gml", nan).find("not a finite number") != std::string::npos);
+  std::string overflow = good;
+  overflow.replace(overflow.find("10.125"), 6, "1e999");
+  BOOST_TEST(error_of("overflow.gml", overflow).find("not a finite number") != std::string::npos);
+  std::string flat = good;
+  flat.replace(flat.find("<gml:posList srsDimension=\"3\">"), 30, "<gml:posList srsDimension=\"2\">");
+  BOOST_TEST(error_of("2d.gml", flat).find("srsDimension") != std::string::npos);
+  BOOST_TEST(error_of("nothing.gml", document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"/>"))).find("no triangles") !=
+             std::string::npos);
+  BOOST_TEST(error_of("plain.xml", "<?xml version=\"1.0\"?><root><a/></root>").find("not CityGML 1.0 or 2.0") != std::string::npos);
+  BOOST_TEST(error_of("dtd.gml", "<?xml version=\"1.0\"?><!DOCTYPE x [<!ENTITY a \"aaaa\">]>" + good.substr(good.find("<core:CityModel")))
+                 .find("DOCTYPE") != std::string::npos);
+  BOOST_TEST(error_of("geocentric.gml", document("2.0", "EPSG:4978", member(box_building("b", kBox)))).find("geocentric") !=
+             std::string::npos);
+  std::string mixed = good;
+  mixed.insert(mixed.find("<gml:posList ") + 13, "srsName=\"EPSG:28992\" ");
+  BOOST_TEST(error_of("mixed.gml", mixed).find("mixed CRSs") != std::string::npos);
+  // Degrees that are not degrees: a geographic srsName over projected numbers.
+  BOOST_TEST(error_of("not_degrees.gml", document("2.0", "EPSG:4326", member(box_building("b", kBox)))).find("axis order") !=
+             std::string::npos);
+  // A posList over 1 MiB, which libcitygml 2.4 would cut silently.
+  std::vector<Vec3> long_ring;
+  for (int i = 0; i < 40000; ++i) long_ring.push_back(kBox.lo + Vec3(std::cos(i * 1e-4), std::sin(i * 1e-4), 0));
+  const std::string long_text = document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>" +
+                                                                     multi_surface({polygon("p", long_ring)}) +
+                                                                     "</bldg:lod1MultiSurface></bldg:Building>"));
+  BOOST_TEST(error_of("long.gml", long_text).find("cuts texts over 1 MiB") != std::string::npos);
+  BOOST_TEST(input_error([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
+}
+
+// ---- The shared real files -----------------------------------------------------------------
+
+BOOST_AUTO_TEST_CASE(citygml_3_is_refused_in_one_line, *test::needs_shared_data()) {
+  for (const char* name : {kTokyo3, kLyon3}) {
+    const std::string e = input_error([&] { read_mesh(shared(name)); });
+    BOOST_TEST(e.find(shared(name).string()) == 0u, e);
+    BOOST_TEST(e.find("CityGML 3.0 is not supported") != std::string::npos, e);
+    BOOST_TEST(e.find("citygml-tools") != std::string::npos, e);
+    BOOST_TEST(e.find('\n') == std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(tokyo_counts_match_an_independent_walk, *test::needs_shared_data()) {
+  const std::string text = read_text(shared(kTokyo2));
+  const XmlWalk lod2 = walk_blocks(text, "lod2MultiSurface");  // the thematic surfaces' polygons
+  const XmlWalk lod1 = walk_blocks(text, "lod1Solid");
+  BOOST_TEST(lod2.polygons == 650u);  // the README: 279 roof + 370 wall + 1 ground
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(shared(kTokyo2), {}, &report);
+  BOOST_TEST(report.surfaces == lod2.polygons);
+  BOOST_TEST(s.triangle_count() == lod2.triangles);
+  BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"2", 1}}));
+  std::map<std::string, std::size_t> per_material;
+  for (const std::uint32_t m : s.triangle_material) ++per_material[s.material_names[m]];
+  BOOST_TEST(per_material.size() == 3u);
+  BOOST_TEST(per_material.count("RoofSurface") == 1u);
+  BOOST_TEST(per_material.count("WallSurface") == 1u);
+  BOOST_TEST(per_material.count("GroundSurface") == 1u);
+  const TriangleSoup l1 = read_citygml(shared(kTokyo2), {std::string("1")}, &report);
+  BOOST_TEST(report.surfaces == lod1.polygons);
+  BOOST_TEST(l1.triangle_count() == lod1.triangles);
+}
+
+BOOST_AUTO_TEST_CASE(yokosuka_lods_per_object, *test::needs_shared_data()) {
+  const std::string text = read_text(shared(kYokosuka));
+  // Every object (12 Buildings, 2 BuildingParts) has an LoD 1 solid; 1 Building and the 2 parts
+  // of another (which has no geometry itself) have LoD 2 surfaces too (counted in the file with
+  // a Python ElementTree walk: 14 lod1Solid, 9 thematic surfaces in 3 objects).
+  const XmlWalk lod1 = walk_blocks(text, "lod1Solid");
+  CityGmlReport report;
+  const TriangleSoup l1 = read_citygml(shared(kYokosuka), {std::string("1")}, &report);
+  BOOST_TEST(report.surfaces == lod1.polygons);
+  BOOST_TEST(l1.triangle_count() == lod1.triangles);
+  BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"1", 14}}));
+  const TriangleSoup best = read_citygml(shared(kYokosuka), {}, &report);
+  BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"1", 11}, {"2", 3}}));
+  BOOST_TEST(report.objects == 15u);
+  BOOST_TEST(report.objects_with_geometry == 14u);
+  BOOST_TEST(best.object_names.size() == 14u);
+  // bldg:lod0FootPrint is not read by libcitygml: the report says so.
+  bool lod0_noted = false;
+  for (const std::string& n : report.notes) lod0_noted = lod0_noted || n.find("bldg:lod0FootPrint") != std::string::npos;
+  BOOST_TEST(lod0_noted);
+}
+
+BOOST_AUTO_TEST_CASE(geographic_plateau_is_projected_to_utm_54n, *test::needs_shared_data()) {
+  const std::string text = read_text(shared(kTokyo2));
+  MeshReadReport report;
+  const TriangleSoup s = read_mesh(shared(kTokyo2), &report);
+  // EPSG:6697 = JGD2011 (latitude, longitude) + JGD2011 height: JGD2011 / UTM zone 54N + the same heights.
+  BOOST_TEST(report.crs == "EPSG:6691+6695");
+  // A known point: the first vertex of the first thematic surface, projected by the Krüger
+  // series on GRS80 (JGD2011's ellipsoid), must be a vertex of the soup within 1 µm (the series
+  // to n⁴ is good to ~10⁻⁷ m, PROJ's to nanometres; measured 5·10⁻⁸ m), its height copied exactly.
+  const Vec3 llh = first_position(text, "<bldg:lod2MultiSurface>");
+  BOOST_TEST(llh.x() > 35.0);
+  BOOST_TEST(llh.x() < 36.0);
+  const Vec3 en = utm_forward(llh.x(), llh.y(), 54);
+  double best = 1e30;
+  const Vec3* nearest = nullptr;
+  for (const Vec3& v : s.vertices)
+    if (const double d = std::hypot(v.x() - en.x(), v.y() - en.y()); d < best) best = d, nearest = &v;
+  BOOST_TEST_MESSAGE("Krüger series vs the reader: " << best << " m");
+  BOOST_TEST(best < 1e-6);
+  BOOST_TEST(nearest->z() == llh.z());
+  // Heights stay heights: the model's z range is the file's.
+  double z_min = 1e30, z_max = -1e30;
+  for (const Vec3& v : s.vertices) z_min = std::min(z_min, v.z()), z_max = std::max(z_max, v.z());
+  BOOST_TEST(z_min > 0.0);
+  BOOST_TEST(z_max < 100.0);
+  // Plausible building: the box spans tens of metres, not degrees.
+  double x_min = 1e30, x_max = -1e30;
+  for (const Vec3& v : s.vertices) x_min = std::min(x_min, v.x()), x_max = std::max(x_max, v.x());
+  BOOST_TEST(x_max - x_min > 20.0);
+  BOOST_TEST(x_max - x_min < 500.0);
+}
+
+BOOST_AUTO_TEST_CASE(cleanup) {
+  fs::remove_all(temp_path());
+  BOOST_TEST(!fs::exists(temp_path()));
+}
