@@ -131,7 +131,6 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   struct ComponentState {
     bool closed_ok = true;
     double z_min = 1e300;
-    double volume6 = 0;  // 6 × signed volume, relative to the component's first vertex
     Vec3 reference;
     bool has_reference = false;
   };
@@ -163,12 +162,22 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
             [](const DirectedEdge& x, const DirectedEdge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
   std::vector<std::uint32_t> adjacency_start(nt + 1, 0);
   std::vector<std::pair<std::uint32_t, bool>> adjacency;  // (neighbour, the two must differ in flip)
+  // Vertical edges used by 4, 6, ... triangles: where columns meet along a vertical line only
+  // (height-field pixels touching diagonally, buildings touching at a corner). They link no
+  // orientation; once every triangle is oriented they must be balanced (as many traversals up as
+  // down), which keeps the surface a closed oriented cycle. Ranges [first, last) into `edges`.
+  std::vector<std::pair<std::size_t, std::size_t>> multi_edges;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
     const DirectedEdge& e = edges[i];
     bool ok = j - i == 2;
-    if (j - i == 1) {
+    if (j - i > 2 && (j - i) % 2 == 0) {
+      const auto& te = soup.triangles[e.triangle];
+      const Vec3 &p = soup.vertices[te[e.side]], &q = soup.vertices[te[(e.side + 1) % 3]];
+      ok = p.x() == q.x() && p.y() == q.y();
+      if (ok) multi_edges.emplace_back(i, j);
+    } else if (j - i == 1) {
       const auto& te = soup.triangles[e.triangle];
       const double zf = state[e.component].z_min;
       ok = soup.vertices[te[e.side]].z() == zf && soup.vertices[te[(e.side + 1) % 3]].z() == zf;
@@ -195,12 +204,18 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       i = j;
     }
   }
+  // Orientation regions: the triangles one walk over shared edges reaches. A component is
+  // usually one region; columns touching only along vertical lines or at vertices give several,
+  // each oriented (made outward) on its own.
   std::vector<std::int8_t> flip(nt, -1);
+  std::vector<std::uint32_t> region(nt, UINT32_MAX);
+  std::uint32_t regions = 0;
   {
     std::vector<std::uint32_t> queue;
     for (std::uint32_t t0 = 0; t0 < nt; ++t0) {
       if (flip[t0] >= 0 || !state[root[t0]].closed_ok) continue;
       flip[t0] = 0;
+      region[t0] = regions++;
       queue.assign(1, t0);
       while (!queue.empty()) {
         const std::uint32_t t = queue.back();
@@ -210,6 +225,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
           const std::int8_t want = std::int8_t(flip[t] ^ (differ ? 1 : 0));
           if (flip[u] < 0) {
             flip[u] = want;
+            region[u] = region[t];
             queue.push_back(u);
           } else if (flip[u] != want) {
             state[root[t]].closed_ok = false;  // not orientable
@@ -219,27 +235,49 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     }
   }
   const auto winding = [&](std::uint32_t t) { return flip[t] == 1 ? -1 : 1; };
-  // The signed volume relative to a point of the floor plane z = z_min: for a surface closed but
-  // for a floor left open (boundary edges in that plane), the volume of the solid capped there — a
-  // cap in the plane adds nothing relative to a point in it.
+  // The signed volume of each region relative to a point of its component's floor plane
+  // z = z_min: for a surface closed but for a floor left open (boundary edges in that plane), the
+  // volume of the solid capped there — a cap in the plane adds nothing relative to a point in it.
+  // A region is closed by itself (every paired edge joins two of its own triangles; multi-edges
+  // must be balanced within each region, below), so its volume does not depend on the reference
+  // point.
+  std::vector<double> region_volume6(regions, 0.0);
   for (std::uint32_t t = 0; t < nt; ++t) {
-    ComponentState& s = state[root[t]];
+    if (region[t] == UINT32_MAX) continue;
+    const ComponentState& s = state[root[t]];
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
     const Vec3 r(s.reference.x(), s.reference.y(), s.z_min);
-    s.volume6 += winding(t) * (a - r).dot((b - r).cross(c - r));
+    region_volume6[region[t]] += winding(t) * (a - r).dot((b - r).cross(c - r));
+  }
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (region[t] != UINT32_MAX && region_volume6[region[t]] == 0) state[root[t]].closed_ok = false;
+  // +1 where the oriented winding of t is outward.
+  const auto outward = [&](std::uint32_t t) { return winding(t) * (region_volume6[region[t]] > 0 ? 1 : -1); };
+  // Multi-edges: balanced within each region once oriented outward (so that every region is a
+  // closed oriented surface by itself).
+  for (const auto& [first, last] : multi_edges) {
+    const DirectedEdge& e = edges[first];
+    if (!state[e.component].closed_ok) continue;
+    for (std::size_t k = first; k < last; ++k) {
+      int balance = 0;
+      for (std::size_t m = first; m < last; ++m)
+        if (region[edges[m].triangle] == region[edges[k].triangle])
+          balance += (edges[m].forward ? 1 : -1) * outward(edges[m].triangle);
+      if (balance != 0) state[e.component].closed_ok = false;
+    }
   }
 
   // Down-facing triangles (outward normal below the horizontal) must lie in the floor plane.
   std::vector<char> column(nt, 0);
   for (std::uint32_t t = 0; t < nt; ++t)
-    if (root[t] == t) column[t] = state[t].closed_ok && state[t].volume6 != 0;
+    if (root[t] == t) column[t] = state[t].closed_ok;
   for (std::uint32_t t = 0; t < nt; ++t) {
     const std::uint32_t r = root[t];
     if (!column[r]) continue;
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    const int up = exact_orient2d_sign(a, b, c) * winding(t) * (state[r].volume6 > 0 ? 1 : -1);
+    const int up = exact_orient2d_sign(a, b, c) * outward(t);
     const double zf = state[r].z_min;
     if (up < 0 && !(a.z() == zf && b.z() == zf && c.z() == zf)) column[r] = 0;
   }
@@ -267,6 +305,10 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     const DirectedEdge &e = edges[i], &f = edges[i + 1];
     if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
     ++i;
+    if (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) {  // a vertical multi-edge
+      while (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) ++i;
+      continue;
+    }
     const auto& te = soup.triangles[e.triangle];
     const auto& tf = soup.triangles[f.triangle];
     Candidate candidate;
@@ -288,7 +330,8 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     // det[a − p, b − p, c − p] is the triangle's orientation when (a, b, c) follows its winding
     // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
     // winding normal's side; the outward sign turns that into "front-facing".
-    const int out_sign = state[e.component].volume6 > 0 ? 1 : -1;
+    // (Both faces are in one region: a paired edge links them.)
+    const int out_sign = region_volume6[region[e.triangle]] > 0 ? 1 : -1;
     const bool e_forward = e.forward != (flip[e.triangle] == 1), f_forward = f.forward != (flip[f.triangle] == 1);
     s.facing_sign[0] = std::int8_t(-out_sign * (e_forward ? 1 : -1));
     s.facing_sign[1] = std::int8_t(-out_sign * (f_forward ? 1 : -1));

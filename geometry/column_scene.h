@@ -5,9 +5,15 @@
 // A connected component of the triangle soup (triangles linked through exactly equal vertex
 // positions) is a *column solid* when
 //   1. it is a closed, consistently oriented surface: every edge belongs to exactly two of its
-//      triangles, traversed in opposite directions, and no triangle repeats a vertex;
-//   2. with its orientation made outward (sign of its signed volume), every triangle facing down
-//      (exact xy-orientation predicate) lies in the plane z = z_floor, the component's lowest z.
+//      triangles, traversed in opposite directions (or to one, when the edge lies in the floor
+//      plane: a floor left open), and no triangle repeats a vertex. A vertical edge may belong to
+//      4, 6, ... triangles (columns meeting along a vertical line only: height-field pixels
+//      touching diagonally, buildings touching at a corner) when it is traversed as often up as
+//      down. The triangles reached from one another over two-triangle edges form an
+//      orientation region, made outward by the sign of its own signed volume; a multi-edge must
+//      be balanced within each region (every region a closed surface by itself);
+//   2. with its orientation made outward, every triangle facing down (exact xy-orientation
+//      predicate) lies in the plane z = z_floor, the component's lowest z.
 // Going up a vertical line, the winding number of such a surface can only rise at z_floor and
 // then never rises again, so the solid meets every vertical line in one segment that starts at
 // its floor: a building extruded from its footprint (flat or pitched roofs, any footprint, with

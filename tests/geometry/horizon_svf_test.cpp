@@ -404,3 +404,46 @@ BOOST_AUTO_TEST_CASE(floorless_boxes_with_random_windings_on_a_ground) {
     BOOST_TEST(std::abs(run.factors[i].svf - exact) < kExact, "point " << i << ": " << run.factors[i].svf << " oracle " << exact);
   }
 }
+
+BOOST_AUTO_TEST_CASE(columns_touching_along_a_vertical_edge_or_a_vertex) {
+  // Two boxes of one height touching diagonally: their shared vertical edge (1,1,0)–(1,1,4)
+  // belongs to four triangles. Traversed twice up and twice down once oriented: one column solid,
+  // whatever each box's winding. A third box touching the first only at the vertex (0,0,0) is a
+  // second orientation region of the same component, wound inward.
+  TriangleSoup soup;
+  append_box(soup, Vec3(0, 0, 0), Vec3(1, 1, 4));
+  append_box(soup, Vec3(1, 1, 0), Vec3(2.5, 3, 4));
+  TriangleSoup inward;
+  append_box(inward, Vec3(-1.5, -2, 0), Vec3(0, 0, 6));
+  for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+  soup.append(inward);
+  const Scene scene(soup);
+  BOOST_TEST(scene.column_scene().column_solids == 1u);
+  BOOST_TEST(scene.column_scene().other_components == 0u);
+  // Points around them (outside the footprints), the horizon method against the union oracle.
+  std::vector<QueryPoint> pts;
+  gen::Rng rng(31);
+  const auto inside = [](const Vec3& p, double x0, double y0, double x1, double y1) {
+    return p.x() > x0 - 0.05 && p.x() < x1 + 0.05 && p.y() > y0 - 0.05 && p.y() < y1 + 0.05;
+  };
+  while (pts.size() < 40) {
+    QueryPoint q{Vec3{rng.uniform(-5, 6), rng.uniform(-5, 6), rng.uniform(0, 3)}, rng.unit_normal(0, kPi / 2, 0, 6.28)};
+    if (pts.size() < 10) q.normal = Vec3(0, 0, 1);
+    if (inside(q.position, 0, 0, 1, 1) || inside(q.position, 1, 1, 2.5, 3) || inside(q.position, -1.5, -2, 0, 0)) continue;
+    pts.push_back(q);
+  }
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(run.by_horizon == pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
+    BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact, "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
+    BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < kExact, "point " << i);
+  }
+
+  // Two boxes sharing a whole wall (a party wall modelled twice): its horizontal edges belong to
+  // four triangles — not a column solid.
+  TriangleSoup party;
+  append_box(party, Vec3(0, 0, 0), Vec3(1, 1, 4));
+  append_box(party, Vec3(1, 0, 0), Vec3(2, 1, 4));
+  BOOST_TEST(classify_column_scene(party).column_solids == 0u);
+}
