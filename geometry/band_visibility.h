@@ -41,6 +41,11 @@ struct VisibilityOptions {
   // Calculation points are evaluated this far in front of their surface (along the normal), so
   // that a point given on a surface in rounded decimal coordinates is not hidden by that surface.
   double surface_offset_m = 1e-6;
+  // Method "automatic" uses the exact union instead of the exact horizon on column solids whose
+  // faces are finely split (geometry/sky_visibility.cpp); true keeps the horizon wherever it is
+  // valid — for height fields, whose pixel sides continue one another along every row of equal
+  // heights and whose union would not be cheaper. Results agree to rounding either way.
+  bool prefer_horizon = false;
   // Parts of the scene seen only within this angle of the pencil axis (α < tail or α > π − tail)
   // are not traversed: cosine weighting makes their largest possible effect on the SVF
   // (4/(3π))·W·tail³/2 ≤ 0.43·tail³ = 4.3e-7 at the default (docs/geometry.md); 0 = exhaustive.

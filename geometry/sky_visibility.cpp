@@ -18,11 +18,12 @@ SkyVisibility::SkyVisibility(const Scene& scene, const VisibilityOptions& option
   // Both exact methods give the same values to rounding; the horizon is the cheaper where it
   // applies, unless the column solids' faces are finely split (more than half their silhouette
   // candidates continued by a collinear one: a wall split 11 × 11 has 11 candidate edges along its
-  // top but is one occluder of the union, whose coplanar regions are merged). The union's
+  // top but is one occluder of the union, whose coplanar regions are merged; not with
+  // VisibilityOptions::prefer_horizon). The union's
   // occluders are built only when a point needs them.
   if (method == SkyFactorsMethod::automatic) {
     const ColumnScene& columns = scene.column_scene();
-    if (columns.column_solids > 0 && 2 * columns.split_edges <= columns.edges.size())
+    if (columns.column_solids > 0 && (options.prefer_horizon || 2 * columns.split_edges <= columns.edges.size()))
       horizon_ = std::make_unique<HorizonSvf>(scene, columns, options.surface_offset_m);
   }
 }
