@@ -501,11 +501,11 @@ class ModelWalk {
       raw_.coordinates.push_back(p);
     }
     if (raw_.coordinates.size() - start > 1 && raw_.coordinates.back() == raw_.coordinates[start]) raw_.coordinates.pop_back();
-    std::vector<Vec3> distinct(raw_.coordinates.begin() + static_cast<std::ptrdiff_t>(start), raw_.coordinates.end());
-    std::sort(distinct.begin(), distinct.end(), [](const Vec3& a, const Vec3& b) {
+    distinct_.assign(raw_.coordinates.begin() + static_cast<std::ptrdiff_t>(start), raw_.coordinates.end());  // reused buffer
+    std::sort(distinct_.begin(), distinct_.end(), [](const Vec3& a, const Vec3& b) {
       return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
     });
-    if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) {
+    if (std::unique(distinct_.begin(), distinct_.end()) - distinct_.begin() < 3) {
       raw_.coordinates.resize(start);
       return false;
     }
@@ -555,6 +555,7 @@ class ModelWalk {
   std::vector<ObjectEntry> entries_;
   std::unordered_set<const citygml::Polygon*> read_polygons_;
   std::unordered_map<std::string, std::uint32_t> materials_;
+  std::vector<Vec3> distinct_;  // add_ring's scratch
   const std::string* object_name_ = nullptr;
   std::uint32_t object_index_ = kNone;
 };
