@@ -169,8 +169,11 @@ void init_xerces() {
   std::call_once(once, [] { xercesc::XMLPlatformUtils::Initialize(); });
 }
 
-// A well-formedness pass of Xerces alone, run only when libcitygml reported an error: returns
-// "line:column: message" of the first fatal error, or "" if Xerces finds none.
+// A well-formedness pass of Xerces alone, before libcitygml: returns "line:column: message" of
+// the first fatal error, or "" if Xerces finds none. libcitygml 2.4 on malformed XML loses the
+// line (it logs Xerces' message alone) and leaks the objects it had built (measured with
+// LeakSanitizer: ~130 kB for a file cut after its first building), so it only sees well-formed
+// XML. Costs a SAX pass without handlers, a fraction of libcitygml's own.
 std::string first_xml_error(const std::string& bytes) {
   init_xerces();
   struct Handler : xercesc::DefaultHandler {};
@@ -593,7 +596,7 @@ void triangulate_surfaces(const RawSurfaces& raw, TriangleSoup& soup, Counts& co
 }
 
 // libcitygml on the file's bytes; every way it can fail becomes an InputError.
-std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, const std::string& bytes, Logger& logger,
+std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, const std::string& bytes, const Logger& logger,
                                                      std::shared_ptr<Logger> shared_logger) {
   citygml::ParserParams params;
   params.tesselate = false;  // rings as written: we triangulate (holes included) ourselves
@@ -614,8 +617,6 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
     thrown = "unknown exception";
   }
   if (!thrown.empty() || !logger.error.empty() || !model) {
-    const std::string xml = first_xml_error(bytes);
-    if (!xml.empty()) throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML)");
     const std::string what = !thrown.empty() ? thrown : !logger.error.empty() ? without_file(logger.error) : "no CityModel in the file";
     const std::string at = location_of(logger.error);
     throw InputError(name + (at.empty() ? "" : ":" + at) + ": libcitygml: " + printable_text(what).substr(0, 300));
@@ -660,6 +661,8 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   const std::string bytes = read_bytes(file);
   const FileScan scan = scan_bytes(name, bytes);
 
+  if (const std::string xml = first_xml_error(bytes); !xml.empty())
+    throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML)");
   auto logger = std::make_shared<Logger>();
   const auto model = load_model(name, bytes, *logger, logger);
 

@@ -3,7 +3,7 @@
 # build folder and runs each one for SECONDS.
 #
 # Usage: scripts/fuzz.sh SECONDS [TARGET...]     e.g. scripts/fuzz.sh 30, scripts/fuzz.sh 600 mesh_off
-# TARGETs (default all): mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq
+# TARGETs (default all): mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq mesh_citygml
 #   csv_table points_csv times_csv scene_file scene_override epw_reader (the executables are <build>/fuzz/fuzz_<TARGET>).
 # Environment:
 #   SKYBAND_FUZZ_BUILD_DIR  build folder (default build-fuzz)
@@ -25,7 +25,7 @@
 #     the output of each run to <build>/fuzz/logs/.
 # Seeds, used in place (symbolic links; files over 256 KiB are cut to their first 64 KiB at a
 # line end into the build folder, since big seeds only slow the fuzzer down):
-#   ../shared/data/{buildings,cityjson,degenerate,weather,fuzz-found}, tests/data/meshes,
+#   ../shared/data/{buildings,cityjson,citygml,degenerate,weather,fuzz-found}, tests/data/meshes,
 #   examples/scenes, and the hand-made fuzz/seeds/<target>/, chosen by file extension.
 # Reproduce a finding: <build>/fuzz/fuzz_<target> <reproducer file>.
 #
@@ -36,7 +36,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 
-ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq csv_table points_csv times_csv scene_file scene_override epw_reader)
+ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq mesh_citygml csv_table points_csv times_csv scene_file scene_override epw_reader)
 if [ $# -lt 1 ] || ! [[ "$1" =~ ^[0-9]+$ ]] || [ "$1" -lt 1 ]; then
   sed -n '2,9p' "$0" >&2
   exit 2
@@ -84,6 +84,7 @@ seed_extensions() {
     mesh_stl) echo stl ;;
     mesh_cityjson) echo json ;;
     mesh_cityjsonseq) echo jsonl ;;
+    mesh_citygml) echo gml ;;
     csv_table | points_csv | times_csv) echo csv ;;
     scene_file) echo toml ;;
     scene_override) echo txt ;;  # only fuzz-found/scene_override_* among the shared files
@@ -95,7 +96,7 @@ seed_extensions() {
 candidate_seeds() {
   local target=$1 ext dir f base
   ext=$(seed_extensions "$target")
-  for dir in "$SHARED_DIR/data/buildings" "$SHARED_DIR/data/cityjson" "$SHARED_DIR/data/degenerate" "$SHARED_DIR/data/weather" \
+  for dir in "$SHARED_DIR/data/buildings" "$SHARED_DIR/data/cityjson" "$SHARED_DIR/data/citygml" "$SHARED_DIR/data/degenerate" "$SHARED_DIR/data/weather" \
              "$SHARED_DIR/data/fuzz-found" "$ROOT/tests/data/meshes" "$ROOT/examples/scenes" "$ROOT/fuzz/seeds/$target"; do
     [ -d "$dir" ] || continue
     for f in "$dir"/*; do
