@@ -13,7 +13,10 @@
 //  - no text node (a gml:posList) longer than 1 000 000 bytes: libcitygml keeps only the last
 //    chunk of a text node that Xerces delivers in pieces (measured: texts over 1 MiB lose their
 //    start, the ring is cut mid-number, silently), so such a file is refused with its line;
-//  - the srsName attributes (all of them must name the same EPSG codes).
+//  - the srsName attributes (all of them must name the same EPSG codes);
+//  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
+//    Xerces' message without its line and leaks what it had built, so it only sees
+//    well-formed XML, and the error names file:line:column.
 //
 // Reading (libcitygml with tesselation and "optimize" off, so rings arrive as written):
 //  - City objects are libcitygml's CityObjects except thematic surfaces: the boundary surfaces

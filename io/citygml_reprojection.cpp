@@ -116,7 +116,10 @@ CrsInfo classify_crs(const std::string& crs) {
   info.epsg = codes.front();
   Context c = quiet_context();
   std::string definition = "EPSG:" + std::to_string(codes[0]);
-  for (std::size_t i = 1; i < codes.size(); ++i) definition += "+" + std::to_string(codes[i]);  // compound URN
+  for (std::size_t i = 1; i < codes.size(); ++i) {  // a compound URN: "EPSG:6668+6695"
+    definition += '+';
+    definition += std::to_string(codes[i]);
+  }
   Pj p(proj_create(c.get(), definition.c_str()));
   if (!p) {
     const auto& geographic = geographic_epsg_codes();
