@@ -22,6 +22,7 @@ PACKAGES=(
   libnetcdf-dev                           # hourly results (NetCDF-4, CF conventions)
   libcitygml-dev libxerces-c-dev          # CityGML 1.0/2.0 input (libcitygml parses with Xerces-C)
   libproj-dev proj-data                   # geographic city models (PLATEAU) projected to UTM
+  libgdal-dev                             # DSM rasters in, GeoTIFF maps out (skyband map)
 )
 for arg in "$@"; do
   case "$arg" in

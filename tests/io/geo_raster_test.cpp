@@ -1,0 +1,135 @@
+#define BOOST_TEST_MODULE geo_raster
+#include <boost/test/unit_test.hpp>
+
+// Rasters through GDAL (io/geo_raster.h): GeoTIFF written and read back bit for bit, ESRI ASCII
+// grids read with their nodata and CRS, and every refused input a one-line InputError.
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/input_error.h"
+#include "io/geo_raster.h"
+
+using namespace skyband;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir() {
+  const fs::path p = fs::temp_directory_path() / ("skyband_geo_raster_test_" + std::to_string(::getpid()));
+  fs::create_directories(p);
+  return p;
+}
+
+fs::path write_text(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+// The message of the InputError `f` throws ("" if none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kWgs84Wkt =
+    R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(geotiff_round_trip_keeps_values_georeferencing_nodata_and_crs) {
+  const std::vector<float> values{0.25f, 0.5f, -9999.0f, 1.0f, 0.125f, 0.75f};
+  GeoTiffOutput out;
+  out.columns = 3;
+  out.rows = 2;
+  out.geotransform = {85000, 2, 0, 447000, 0, -2};
+  out.values = values;
+  out.crs_wkt = crs_wkt_of("EPSG:28992", "test");
+  out.metadata = {{"QUANTITY", "svf"}};
+  out.band_description = "svf";
+  const fs::path f = temp_dir() / "round.tif";
+  write_geotiff(f, out);
+  const GeoRaster r = read_geo_raster(f);
+  BOOST_TEST(r.columns == 3u);
+  BOOST_TEST(r.rows == 2u);
+  BOOST_TEST((r.geotransform == out.geotransform));
+  BOOST_TEST(r.crs_name == "EPSG:28992");
+  BOOST_TEST(r.nodata_pixels == 1u);
+  BOOST_TEST(std::isnan(r.values[2]));
+  // Float32 values are exactly doubles: read back unchanged.
+  for (std::size_t i : {0, 1, 3, 4, 5}) BOOST_TEST(r.values[i] == double(values[i]));
+  // No temporary file is left beside it.
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(temp_dir()))
+    if (e.path().filename().string().rfind("round.tif", 0) == 0) ++files;
+  BOOST_TEST(files == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(ascii_grid_with_nodata_and_lower_left_origin) {
+  // ESRI ASCII grid: the header's lower-left corner and cell size give the geotransform
+  // (x0 = xllcorner, y0 = yllcorner + nrows·cellsize, steps ±cellsize); row 0 is the northern one.
+  const fs::path f = write_text("dsm.asc",
+                                "ncols 3\nnrows 2\nxllcorner 1000\nyllcorner 2000\ncellsize 0.5\nNODATA_value -1\n"
+                                "1 2 3\n4 -1 6.25\n");
+  const GeoRaster r = read_geo_raster(f);
+  BOOST_TEST(r.columns == 3u);
+  BOOST_TEST(r.rows == 2u);
+  BOOST_TEST((r.geotransform == std::array<double, 6>{1000, 0.5, 0, 2001, 0, -0.5}));
+  BOOST_TEST(r.values[0] == 1.0);
+  BOOST_TEST(r.values[5] == 6.25);
+  BOOST_TEST(std::isnan(r.values[4]));
+  BOOST_TEST(r.nodata_pixels == 1u);
+  BOOST_TEST(r.crs_name == "");
+}
+
+BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
+  const fs::path missing = temp_dir() / "missing.tif";
+  BOOST_TEST(error_of([&] { read_geo_raster(missing); }).find("missing.tif: no such raster file") != std::string::npos);
+  const fs::path garbage = write_text("garbage.tif", "this is not a raster\n");
+  BOOST_TEST(error_of([&] { read_geo_raster(garbage); }).find("garbage.tif: not a raster GDAL can read") != std::string::npos);
+
+  // A rotated geotransform.
+  const std::vector<float> v{1, 2, 3, 4};
+  GeoTiffOutput out;
+  out.columns = out.rows = 2;
+  out.values = v;
+  out.geotransform = {0, 1, 0.1, 0, 0, -1};
+  const fs::path rotated = temp_dir() / "rotated.tif";
+  write_geotiff(rotated, out);
+  BOOST_TEST(error_of([&] { read_geo_raster(rotated); }).find("rotated or sheared") != std::string::npos);
+
+  // A NaN height that is not the nodata value, named by its column and row.
+  const std::vector<float> nan_values{1, std::numeric_limits<float>::quiet_NaN(), 3, 4};
+  out.values = nan_values;
+  out.geotransform = {0, 1, 0, 0, 0, -1};
+  const fs::path with_nan = temp_dir() / "nan.tif";
+  write_geotiff(with_nan, out);
+  BOOST_TEST(error_of([&] { read_geo_raster(with_nan); }).find("pixel (column 1, row 0) is NaN") != std::string::npos);
+
+  // Geographic coordinates: degrees are not metres.
+  const fs::path geo = write_text("geo.asc", "ncols 1\nnrows 1\nxllcorner 4\nyllcorner 52\ncellsize 0.001\n5\n");
+  write_text("geo.prj", kWgs84Wkt);
+  BOOST_TEST(error_of([&] { read_geo_raster(geo); }).find("geographic CRS") != std::string::npos);
+  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:4326", "--crs"); }).find("--crs: EPSG:4326 is a geographic CRS") != std::string::npos);
+  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:nonsense", "--crs"); }).find("unknown coordinate reference system") != std::string::npos);
+
+  // Too many pixels for the limit.
+  BOOST_TEST(error_of([&] { read_geo_raster(rotated, 3); }).find("over the limit") != std::string::npos);
+
+  // Writing into a folder that does not exist.
+  out.values = v;
+  BOOST_TEST(!error_of([&] { write_geotiff(temp_dir() / "no_such_folder" / "x.tif", out); }).empty());
+  BOOST_TEST(!fs::exists(temp_dir() / "no_such_folder"));
+}
