@@ -3,7 +3,9 @@
 // real mesh in ../shared/data/buildings/.
 //
 // Per scene: half street points (5 cm above the local ground), half facade points (5 cm in front
-// of wall triangles); skyband's default (`skyband svf`'s compute_sky_factors, automatic); the
+// of wall triangles) — on the DSM scenes (`skyband map --dsm`'s pixel columns: a synthetic city
+// of blocks on a 0.3 m rough terrain, and the Rotterdam block rasterised at 1 m by downward rays)
+// points 5 cm above random pixels' tops, facing up; skyband's default (`skyband svf`'s compute_sky_factors, automatic); the
 // Monte Carlo estimator: stratified cosine-weighted rays over the face's hemisphere for the SVF
 // (the fraction that reaches the sky: above the horizontal and unoccluded) and as many stratified
 // uniform rays for the exposure (only the SVF rays are timed: the baseline's points/s is its SVF
@@ -40,6 +42,7 @@
 #include <tbb/task_arena.h>
 
 #include "geometry/exact_sky.h"
+#include "geometry/height_field.h"
 #include "geometry/occluder_set.h"
 #include "geometry/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
@@ -121,6 +124,22 @@ class EmbreeSky {
     return double(hits) / double(side * side);
   }
 
+  // The height (metres, world frame) of the highest surface under (x, y), by a ray cast down from
+  // z_top; NaN where the ray meets nothing.
+  double surface_height(double x, double y, double z_top) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh{};
+    rh.ray.org_x = float(x - origin_.x()), rh.ray.org_y = float(y - origin_.y()), rh.ray.org_z = float(z_top - origin_.z());
+    rh.ray.dir_x = 0, rh.ray.dir_y = 0, rh.ray.dir_z = -1;
+    rh.ray.tnear = 0, rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nan("");
+    return z_top - double(rh.ray.tfar);
+  }
+
  private:
   // The jittered strata's directions in the local frame (x, y tangent, z the normal), one table
   // per (side, weighting, seed class): drawing them per point would cost as much as tracing.
@@ -173,6 +192,7 @@ struct BenchScene {
   std::string name;
   TriangleSoup soup;
   std::vector<QueryPoint> points;
+  VisibilityOptions visibility;  // skyband's options (`skyband map --dsm` prefers the horizon)
 };
 
 struct Options {
@@ -199,7 +219,7 @@ void run_scene(const BenchScene& s, const Options& o) {
   SkyFactorsRun run;
   for (int r = 0; r < o.repeat; ++r) {
     const auto t1 = Clock::now();
-    run = compute_sky_factors(scene, s.points, VisibilityOptions{}, SkyFactorsMethod::automatic, o.threads);
+    run = compute_sky_factors(scene, s.points, s.visibility, SkyFactorsMethod::automatic, o.threads);
     t_sky = std::min(t_sky, seconds_since(t1));
   }
 
@@ -259,6 +279,60 @@ void run_scene(const BenchScene& s, const Options& o) {
   std::fflush(stdout);
 }
 
+// A DSM scene: the field's pixel columns, `count` points 5 cm above random pixels' tops.
+BenchScene dsm_scene(const std::string& name, const HeightField& f, std::size_t count, std::uint64_t seed) {
+  BenchScene s;
+  s.name = name;
+  s.soup = height_field_mesh(f, height_field_floor(f));
+  s.visibility.prefer_horizon = true;
+  gen::Rng rng(seed);
+  while (s.points.size() < count) {
+    const std::size_t c = rng.below(f.columns), r = rng.below(f.rows);
+    const double h = f.height(c, r);
+    if (!std::isnan(h)) s.points.push_back({Vec3(f.centre_x(c), f.centre_y(r), h + 0.05), Vec3(0, 0, 1)});
+  }
+  return s;
+}
+
+// Blocks 5–40 m high with 5–20 m sides on a 0.3 m rough terrain, 1 m pixels (the kind of DSM a
+// LiDAR survey of a dense district gives).
+HeightField synthetic_city_dsm(std::size_t n, std::uint64_t seed) {
+  HeightField f;
+  f.columns = f.rows = n;
+  f.x0 = 85000, f.y0 = 447000 + double(n);
+  f.dx = 1, f.dy = -1;
+  f.heights.assign(n * n, 0.0);
+  gen::Rng rng(seed);
+  for (std::size_t b = 0; b < n * n / 650; ++b) {
+    const std::size_t x = rng.below(n - 20), y = rng.below(n - 20), w = 5 + rng.below(15), d = 5 + rng.below(15);
+    const double z = rng.uniform(5, 40);
+    for (std::size_t r = y; r < y + d; ++r)
+      for (std::size_t c = x; c < x + w; ++c) f.heights[r * n + c] = std::max(f.heights[r * n + c], z);
+  }
+  for (double& h : f.heights)
+    if (h == 0) h = 0.3 * rng.uniform();
+  return f;
+}
+
+// A mesh rasterised at `pixel_m` by rays cast down at pixel centres (the highest surface).
+HeightField rasterise(const TriangleSoup& soup, double pixel_m) {
+  const Scene scene(soup);
+  const Aabb b = scene.bounds();
+  const EmbreeSky rays(soup, b.lo);
+  HeightField f;
+  f.columns = std::size_t(std::ceil((b.hi.x() - b.lo.x()) / pixel_m));
+  f.rows = std::size_t(std::ceil((b.hi.y() - b.lo.y()) / pixel_m));
+  f.x0 = b.lo.x(), f.y0 = b.lo.y() + double(f.rows) * pixel_m;
+  f.dx = pixel_m, f.dy = -pixel_m;
+  f.heights.resize(f.columns * f.rows);
+  for (std::size_t r = 0; r < f.rows; ++r)
+    for (std::size_t c = 0; c < f.columns; ++c) {
+      const double h = rays.surface_height(f.centre_x(c), f.centre_y(r), b.hi.z() + 1);
+      f.heights[r * f.columns + c] = std::isnan(h) ? b.lo.z() : h;  // open ground at the model's lowest z
+    }
+  return f;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -296,7 +370,12 @@ int main(int argc, char** argv) {
     s.points.insert(s.points.end(), f.begin(), f.end());
     run_scene(s, o);
   }
+  if (wanted("DSM synthetic city 300² 1 m")) run_scene(dsm_scene("DSM synthetic city 300² 1 m", synthetic_city_dsm(300, 5), o.points, 13), o);
   const std::filesystem::path dir = std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings";
+  if (wanted("DSM rotterdam block 1 m")) {
+    const TriangleSoup rotterdam = read_mesh(dir / "rotterdam_delfshaven_blockA_lod2.obj");
+    run_scene(dsm_scene("DSM rotterdam block 1 m", rasterise(rotterdam, 1.0), o.points, 14), o);
+  }
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
     const std::string ext = e.path().extension().string();
