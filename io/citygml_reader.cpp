@@ -5,6 +5,7 @@
 #include <citygml/citymodel.h>
 #include <citygml/cityobject.h>
 #include <citygml/geometry.h>
+#include <citygml/implictgeometry.h>
 #include <citygml/polygon.h>
 
 #include <xercesc/framework/MemBufInputSource.hpp>
@@ -315,7 +316,8 @@ struct ObjectEntry {
   std::vector<std::uint32_t> children;      // child objects (BuildingPart, BuildingInstallation, ...)
   std::set<unsigned> lods;                  // LoDs with at least one polygon
   std::optional<unsigned> chosen;
-  bool implicit = false;                    // has implicit geometries (not read)
+  bool implicit = false;                    // has implicit geometries
+  bool implicit_unread = false;             // ... that are not read (geographic CRS)
 };
 
 bool has_polygons(const citygml::Geometry& g) {
@@ -353,7 +355,7 @@ struct PositionHash {
 // What a read counts, then hands to the report.
 struct Counts {
   std::size_t objects = 0, objects_with_geometry = 0, skipped_objects = 0, thematic_surfaces = 0, surfaces = 0,
-              surfaces_with_holes = 0;
+              surfaces_with_holes = 0, implicit_instances = 0;
   std::map<std::string, std::size_t> lods_used;
 };
 
@@ -388,11 +390,26 @@ struct RawSurfaces {
   std::vector<Surface> surfaces;
 };
 
+// An implicit geometry's placement (CityGML 2.0 §10.3.6): a template vertex x goes to
+// M·(x, 1) + reference point, M the row-major 4×4 transformationMatrix (its top three rows).
+struct Placement {
+  const double* m;  // 16 values, row-major
+  Vec3 reference;
+  Vec3 apply(const Vec3& x) const {
+    return Vec3(m[0] * x.x() + m[1] * x.y() + m[2] * x.z() + m[3], m[4] * x.x() + m[5] * x.y() + m[6] * x.z() + m[7],
+                m[8] * x.x() + m[9] * x.y() + m[10] * x.z() + m[11]) +
+           reference;
+  }
+};
+
 class ModelWalk {
  public:
-  ModelWalk(const std::string& file, std::optional<unsigned> requested, bool lod_set, TriangleSoup& soup, RawSurfaces& raw,
-            Counts& counts, Notes& notes)
-      : file_(file), requested_(requested), lod_set_(lod_set), soup_(soup), raw_(raw), counts_(counts), notes_(notes) {
+  // read_implicit: place implicit geometries (not in geographic CRSs, where a template in metres
+  // cannot be added to a reference point in degrees before the projection).
+  ModelWalk(const std::string& file, std::optional<unsigned> requested, bool lod_set, bool read_implicit, TriangleSoup& soup,
+            RawSurfaces& raw, Counts& counts, Notes& notes)
+      : file_(file), requested_(requested), lod_set_(lod_set), read_implicit_(read_implicit), soup_(soup), raw_(raw),
+        counts_(counts), notes_(notes) {
     raw_.ring_start.assign(1, 0);
   }
 
@@ -410,7 +427,7 @@ class ModelWalk {
     entries_[index].object = &o;
     if (parent != kNone) entries_[parent].children.push_back(index);
     add_lods(o, entries_[index].lods);
-    entries_[index].implicit = o.getImplicitGeometryCount() > 0;
+    add_implicit_lods(o, entries_[index]);
     for (unsigned c = 0; c < o.getChildCityObjectsCount(); ++c) {
       const CityObject& child = o.getChildCityObject(c);
       if (is_thematic_surface(child.getType(), o.getType()))
@@ -423,8 +440,35 @@ class ModelWalk {
   void attach_surface(const CityObject& s, std::uint32_t owner) {
     entries_[owner].surfaces.push_back(&s);
     add_lods(s, entries_[owner].lods);
-    if (s.getImplicitGeometryCount() > 0) entries_[owner].implicit = true;
+    add_implicit_lods(s, entries_[owner]);
     for (unsigned c = 0; c < s.getChildCityObjectsCount(); ++c) attach_surface(s.getChildCityObject(c), owner);  // openings
+  }
+
+  void add_implicit_lods(const CityObject& o, ObjectEntry& e) const {
+    if (o.getImplicitGeometryCount() == 0) return;
+    e.implicit = true;
+    if (!read_implicit_) {
+      e.implicit_unread = true;
+      return;
+    }
+    for (unsigned i = 0; i < o.getImplicitGeometryCount(); ++i) {
+      const citygml::ImplicitGeometry& ig = o.getImplicitGeometry(i);
+      for (unsigned g = 0; g < ig.getGeometriesCount(); ++g)
+        if (has_polygons(ig.getGeometry(g))) e.lods.insert(ig.getGeometry(g).getLOD());
+    }
+  }
+
+  // An object's implicit geometries of LoD `lod`, each instance placed (templates shared by
+  // several instances are read once per instance).
+  void read_implicit(const CityObject& o, unsigned lod, const std::string& material) {
+    for (unsigned i = 0; i < o.getImplicitGeometryCount(); ++i) {
+      const citygml::ImplicitGeometry& ig = o.getImplicitGeometry(i);
+      const TVec3d r = ig.getReferencePoint();
+      const Placement place{ig.getTransformMatrix().getMatrix(), Vec3(r.x, r.y, r.z)};
+      const std::size_t before = counts_.surfaces;
+      for (unsigned g = 0; g < ig.getGeometriesCount(); ++g) read_geometry(ig.getGeometry(g), lod, material, &place);
+      if (counts_.surfaces > before) ++counts_.implicit_instances;
+    }
   }
 
   std::optional<unsigned> choose(const ObjectEntry& e) const {
@@ -439,9 +483,12 @@ class ModelWalk {
   void read_object(const ObjectEntry& e) {
     ++counts_.objects;
     const CityObject& o = *e.object;
-    if (e.implicit) notes_.add("objects with implicit geometries (templates): those are not read", o.getId());
+    if (e.implicit_unread)
+      notes_.add("objects with implicit geometries (templates): not read in a geographic CRS (a template in metres on a "
+                 "reference point in degrees)",
+                 o.getId());
     if (e.lods.empty()) {
-      if (e.implicit) ++counts_.skipped_objects;
+      if (e.implicit_unread) ++counts_.skipped_objects;
       return;  // no geometry of its own: fine (a parent whose children carry it)
     }
     if (!e.chosen) {
@@ -469,9 +516,11 @@ class ModelWalk {
     for (const CityObject* s : e.surfaces) {
       const std::size_t s_before = counts_.surfaces;
       for (unsigned g = 0; g < s->getGeometriesCount(); ++g) read_geometry(s->getGeometry(g), *e.chosen, surface_type_name(*s));
+      if (read_implicit_) read_implicit(*s, *e.chosen, surface_type_name(*s));
       if (counts_.surfaces > s_before) ++counts_.thematic_surfaces;
     }
     for (unsigned g = 0; g < o.getGeometriesCount(); ++g) read_geometry(o.getGeometry(g), *e.chosen, object_type_name(o));
+    if (read_implicit_) read_implicit(o, *e.chosen, object_type_name(o));
     if (counts_.surfaces > before) {
       ++counts_.objects_with_geometry;
       ++counts_.lods_used[std::to_string(*e.chosen)];
@@ -481,19 +530,19 @@ class ModelWalk {
     }
   }
 
-  void read_geometry(const citygml::Geometry& g, unsigned lod, const std::string& material) {
+  void read_geometry(const citygml::Geometry& g, unsigned lod, const std::string& material, const Placement* place = nullptr) {
     if (g.getLOD() != lod) return;
     if (g.getLineStringCount() > 0) notes_.add("curve geometries (lines) not read: no area", *object_name_);
-    for (unsigned p = 0; p < g.getPolygonsCount(); ++p) read_polygon(*g.getPolygon(p), material);
-    for (unsigned c = 0; c < g.getGeometriesCount(); ++c) read_geometry(g.getGeometry(c), lod, material);
+    for (unsigned p = 0; p < g.getPolygonsCount(); ++p) read_polygon(*g.getPolygon(p), material, place);
+    for (unsigned c = 0; c < g.getGeometriesCount(); ++c) read_geometry(g.getGeometry(c), lod, material, place);
   }
 
   // One ring into raw_.coordinates, cleaned: closing vertex and consecutive repeats removed.
   // Returns false (and adds nothing) for fewer than 3 distinct positions.
-  bool add_ring(const std::vector<TVec3d>& ring, const std::string& where) {
+  bool add_ring(const std::vector<TVec3d>& ring, const std::string& where, const Placement* place) {
     const std::size_t start = raw_.coordinates.size();
     for (const auto& v : ring) {
-      const Vec3 p(v.x, v.y, v.z);
+      const Vec3 p = place ? place->apply(Vec3(v.x, v.y, v.z)) : Vec3(v.x, v.y, v.z);
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
         throw InputError(file_ + ": polygon " + printable_text(where) + " of object " + printable_text(*object_name_) +
                          ": non-finite coordinate");
@@ -516,8 +565,8 @@ class ModelWalk {
     return true;
   }
 
-  void read_polygon(const citygml::Polygon& polygon, const std::string& material) {
-    if (!read_polygons_.insert(&polygon).second) {
+  void read_polygon(const citygml::Polygon& polygon, const std::string& material, const Placement* place) {
+    if (!place && !read_polygons_.insert(&polygon).second) {
       notes_.add("polygons referenced twice (xlink:href): read once", polygon.getId());
       return;
     }
@@ -527,12 +576,12 @@ class ModelWalk {
       return;
     }
     const auto first_ring = static_cast<std::uint32_t>(raw_.ring_start.size() - 1);
-    if (!add_ring(outer->getVertices(), polygon.getId())) {
+    if (!add_ring(outer->getVertices(), polygon.getId(), place)) {
       notes_.add("surfaces skipped: outer ring with fewer than 3 distinct vertices", polygon.getId());
       return;
     }
     for (const auto& inner : polygon.interiorRings())
-      if (!add_ring(inner->getVertices(), polygon.getId())) notes_.add("inner rings (holes) skipped: fewer than 3 distinct vertices", polygon.getId());
+      if (!add_ring(inner->getVertices(), polygon.getId(), place)) notes_.add("inner rings (holes) skipped: fewer than 3 distinct vertices", polygon.getId());
     if (object_index_ == kNone) {
       object_index_ = static_cast<std::uint32_t>(soup_.object_names.size());
       soup_.object_names.push_back(*object_name_);
@@ -551,6 +600,7 @@ class ModelWalk {
   const std::string& file_;
   std::optional<unsigned> requested_;
   bool lod_set_;
+  bool read_implicit_;
   TriangleSoup& soup_;
   RawSurfaces& raw_;
   Counts& counts_;
@@ -629,11 +679,11 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
   return model;
 }
 
-// The CRS: one set of EPSG codes in all srsNames; geographic → reprojected, geocentric refused.
-void apply_crs(const std::string& name, const FileScan& scan, RawSurfaces& raw, CityGmlReport& report) {
+// The CRS: one set of EPSG codes in all srsNames; geocentric refused.
+CrsInfo check_crs(const std::string& name, const FileScan& scan, CityGmlReport& report) {
   if (scan.srs_names.empty()) {
     report.notes.push_back("no srsName: coordinates taken as metres in an unknown projected CRS");
-    return;
+    return {};
   }
   const std::string& srs = scan.srs_names.front();
   for (const std::string& other : scan.srs_names)
@@ -646,9 +696,14 @@ void apply_crs(const std::string& name, const FileScan& scan, RawSurfaces& raw, 
     throw InputError(name + ": srsName '" + printable_text(srs) + "' is a geocentric CRS (z is not up); reproject to a projected CRS first");
   if (info.kind == CrsKind::unknown)
     report.notes.push_back("srsName '" + printable_text(srs) + "' is not a CRS PROJ knows: coordinates taken as metres");
-  if (info.kind != CrsKind::geographic) return;
-  if (info.epsg == 0 || info.name.empty())
+  if (info.kind == CrsKind::geographic && (info.epsg == 0 || info.name.empty()))
     throw InputError(name + ": srsName '" + printable_text(srs) + "' is geographic (degrees) and PROJ does not know it: cannot reproject");
+  return info;
+}
+
+// Geographic coordinates → the UTM zone of the model's centre (io/citygml_reprojection.h).
+void project_if_geographic(const std::string& name, const CrsInfo& info, RawSurfaces& raw, CityGmlReport& report) {
+  if (info.kind != CrsKind::geographic) return;
   const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates);
   report.crs = r.target_crs;
   report.reprojection = r.description;
@@ -673,8 +728,9 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   RawSurfaces raw;
   Counts counts;
   Notes notes;
-  ModelWalk(name, requested, options.lod.has_value(), soup, raw, counts, notes).read(*model);
-  apply_crs(name, scan, raw, r);
+  const CrsInfo crs = check_crs(name, scan, r);
+  ModelWalk(name, requested, options.lod.has_value(), crs.kind != CrsKind::geographic, soup, raw, counts, notes).read(*model);
+  project_if_geographic(name, crs, raw, r);
   triangulate_surfaces(raw, soup, counts, notes);
 
   r.objects = counts.objects;
@@ -687,6 +743,8 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   r.vertices = soup.vertices.size();
   r.lods_used = counts.lods_used;
   if (!r.reprojection.empty()) r.notes.push_back(r.reprojection);
+  if (counts.implicit_instances)
+    r.notes.push_back(std::to_string(counts.implicit_instances) + " implicit geometries placed (template x -> M x + reference point)");
   notes.emit(r.notes);
   for (const auto& [element, n] : logger->unknown_elements)
     r.notes.push_back(std::to_string(n) + " x <" + printable_text(element) + "> not read by libcitygml (skipped with its content)");

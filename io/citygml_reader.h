@@ -36,9 +36,12 @@
 //  - Polygons with holes: rings as written (closing vertex and consecutive repeats removed,
 //    counted), triangulated by triangulate_polygon_with_holes (the CityJSON reader's method);
 //    vertices with bit-identical coordinates are shared. Coordinates are never shifted.
-//  - Not read, and counted in the notes: implicit geometries (templates of vegetation and city
-//    furniture), curves and points, and the elements libcitygml skips (bldg:lod0FootPrint and
-//    lod0RoofEdge, ADE elements), by element name.
+//  - Implicit geometries (templates of vegetation and city furniture, shared by xlink): each
+//    instance placed as M·x + reference point (M the row-major 4×4 transformationMatrix, as the
+//    CityJSON reader places geometry instances), at its LoD like any other geometry; not in a
+//    geographic CRS (a template in metres on a reference point in degrees), with a note.
+//  - Not read, and counted in the notes: curves and points, and the elements libcitygml skips
+//    (bldg:lod0FootPrint and lod0RoofEdge, ADE elements), by element name.
 //
 // Material names (one per triangle): the thematic surface's type (RoofSurface, WallSurface,
 // GroundSurface, ..., Window, Door; traffic areas "TrafficArea" — libcitygml does not tell

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -90,7 +91,7 @@ std::string multi_surface(const std::vector<std::string>& polygons) {
 std::string document(const std::string& version, const std::string& srs, const std::string& members) {
   const std::string ns = "http://www.opengis.net/citygml/";
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"" + ns + version + "\" xmlns:bldg=\"" + ns +
-         "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version +
+         "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version + "\" xmlns:veg=\"" + ns + "vegetation/" + version +
          "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">\n"
          "<gml:boundedBy><gml:Envelope srsName=\"" + srs + "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
          "<gml:upperCorner>1 1 1</gml:upperCorner></gml:Envelope></gml:boundedBy>\n" + members + "</core:CityModel>\n";
@@ -300,6 +301,50 @@ BOOST_AUTO_TEST_CASE(terrain_classes_are_ground_and_citygml_1_0_reads) {
     BOOST_TEST(area_by_material(s).at("LandUse") == 1e4, tt::tolerance(1e-9));
     BOOST_TEST(s.object_names.size() == 2u);
   }
+}
+
+// Two trees from one template (a unit box, defined in the first, referenced by xlink in the
+// second): each instance is M·x + reference point with M = diag(2, 2, 3), so each tree is a
+// 2 × 2 × 3 box of area 2·4 + 4·6 = 32 m² whose corners sit exactly at reference + M·corner.
+BOOST_AUTO_TEST_CASE(implicit_geometries_are_placed) {
+  const Box unit{Vec3(-0.5, -0.5, 0), 1, 1, 1};
+  const std::string tpl = "<gml:MultiSurface gml:id=\"tpl\">" +
+                          [&] {
+                            std::string m;
+                            int k = 0;
+                            for (const auto& ring : {unit.ground(), unit.roof(), unit.south(), unit.east(), unit.north(), unit.west()})
+                              m += "<gml:surfaceMember>" + polygon("tpl_" + std::to_string(k++), ring) + "</gml:surfaceMember>";
+                            return m;
+                          }() +
+                          "</gml:MultiSurface>";
+  auto tree = [&](const std::string& id, const std::string& geometry, const Vec3& ref) {
+    return "<veg:SolitaryVegetationObject gml:id=\"" + id + "\"><veg:lod2ImplicitRepresentation><core:ImplicitGeometry>"
+           "<core:transformationMatrix>2 0 0 0 0 2 0 0 0 0 3 0 0 0 0 1</core:transformationMatrix>" + geometry +
+           "<core:referencePoint><gml:Point><gml:pos>" + number(ref.x()) + " " + number(ref.y()) + " " + number(ref.z()) +
+           "</gml:pos></gml:Point></core:referencePoint></core:ImplicitGeometry></veg:lod2ImplicitRepresentation>"
+           "</veg:SolitaryVegetationObject>";
+  };
+  const Vec3 a = kBox.lo + Vec3(-20, 0, 0), b = kBox.lo + Vec3(-40, 5, 0.5);
+  const fs::path file = write_file("trees.gml", document("2.0", kProjected,
+                                                         member(tree("tree1", "<core:relativeGMLGeometry>" + tpl + "</core:relativeGMLGeometry>", a)) +
+                                                             member(tree("tree2", "<core:relativeGMLGeometry xlink:href=\"#tpl\"/>", b))));
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(file, {}, &report);
+  BOOST_TEST(s.object_names == (std::vector<std::string>{"tree1", "tree2"}));
+  BOOST_TEST(s.triangle_count() == 24u);
+  std::map<std::string, double> per_object;
+  for (std::size_t t = 0; t < s.triangle_count(); ++t) per_object[s.object_names[s.triangle_object[t]]] += area_m2(s, t);
+  BOOST_TEST(per_object.at("tree1") == 32.0, tt::tolerance(1e-12));
+  BOOST_TEST(per_object.at("tree2") == 32.0, tt::tolerance(1e-12));
+  BOOST_TEST(s.material_names == std::vector<std::string>{"SolitaryVegetationObject"});
+  const Vec3 corner = b + Vec3(2 * 0.5, 2 * 0.5, 3 * 1.0);  // template corner (0.5, 0.5, 1)
+  BOOST_TEST(std::count(s.vertices.begin(), s.vertices.end(), corner) == 1);
+  BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"2", 2}}));
+  // In a geographic CRS the reference point is in degrees and the template in metres: not read, and said.
+  const fs::path geo = write_file("trees_geo.gml", document("2.0", "EPSG:6697", member(tree("t", "<core:relativeGMLGeometry>" + tpl +
+                                                                                                "</core:relativeGMLGeometry>", Vec3(35.68, 139.69, 40)))));
+  const std::string e = input_error([&] { read_citygml(geo); });
+  BOOST_TEST(e.find("no triangles (1 city objects, 1 skipped)") != std::string::npos, e);
 }
 
 BOOST_AUTO_TEST_CASE(read_mesh_dispatches_and_reports_the_crs) {
