@@ -54,8 +54,23 @@ struct SkyOptions {
   double exposure = 0;
   bool half = false;
   bool json = false;
+  bool sun_path = false;  // --sun-path: the day's sun path on the --at fisheye
   CLI::Option* o_exposure = nullptr;
 };
+
+// The sun through the local day of --time (its UTC offset), every 10 minutes from 00:00 to
+// 24:00: the marks of the --sun-path drawing.
+std::vector<SunPathMark> day_sun_path(const SunSkyOptions& o) {
+  const LocalDateTime day = o.local_time("--sun-path");
+  std::vector<SunPathMark> marks;
+  for (int minute = 0; minute <= 24 * 60; minute += 10) {
+    LocalDateTime t = day;
+    t.hour = minute / 60 % 24, t.minute = minute % 60, t.second = 0;
+    if (minute == 24 * 60) t.hour = 23, t.minute = 59, t.second = 59;  // the day's end, same date
+    marks.push_back({o.sun_at(t, "--sun-path").direction(), minute % 60 == 0});
+  }
+  return marks;
+}
 
 nlohmann::json xy_json(const Xyz& xyz) {
   const auto xy = chromaticity_xy(xyz);
@@ -110,6 +125,8 @@ void run_sky(const SkyOptions& o) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) throw InputError("--at: coordinates must be finite");
     at = QueryPoint{p, n};
   }
+  if (o.sun_path && !at) throw InputError("--sun-path draws on the fisheye of a point: give --at X,Y,Z and --mesh");
+  const std::vector<SunPathMark> path = o.sun_path ? day_sun_path(o.sun_sky) : std::vector<SunPathMark>{};
 
   const Vec3 sun_dir = sun.direction();
   const SkyModel sky(ap, sun_dir, spec);
@@ -180,7 +197,7 @@ void run_sky(const SkyOptions& o) {
           sky.radiance_into(d, l);
           return spectrum_to_linear_srgb(l);
         },
-        o.o_exposure->count() ? o.exposure : 0.0);
+        o.o_exposure->count() ? o.exposure : 0.0, path);
     const std::vector<ImageLayer> layers{{"sky", f.sky_rgb}, {"visible", f.visible_rgb}};
     const std::map<std::string, std::string> attrs = {
         {"skyband_version", SKYBAND_VERSION},
@@ -199,6 +216,11 @@ void run_sky(const SkyOptions& o) {
                   {"svf", f.svf},
                   {"sky_exposure", f.sky_exposure},
                   {"visible_fraction_of_fisheye_pixels", f.sky_pixels ? double(f.visible_pixels) / double(f.sky_pixels) : 0.0}};
+    if (o.sun_path)
+      j["point"]["sun_path"] = {{"step_min", 10},
+                                {"marks_above_horizon", f.sun_marks_up},
+                                {"marks_seen", f.sun_marks_seen},
+                                {"sun_hours_estimate", double(f.sun_marks_seen) * 10.0 / 60.0}};
     j["image"] = {{"exr", exr_path.string()}, {"png", png_path.string()}, {"size_px", o.size}};
   } else if (!exr_path.empty()) {
     const int n = o.size;
@@ -252,6 +274,10 @@ void run_sky(const SkyOptions& o) {
   if (at)
     std::printf("point     svf %.6f, sky exposure %.6f (the fisheye shows what it sees; the red line is its horizon)\n",
                 j["point"]["svf"].get<double>(), j["point"]["sky_exposure"].get<double>());
+  if (at && o.sun_path)
+    std::printf("sun path  %zu of %zu ten-minute marks above the horizon seen from the point (~%.1f h of sun)\n",
+                j["point"]["sun_path"]["marks_seen"].get<std::size_t>(), j["point"]["sun_path"]["marks_above_horizon"].get<std::size_t>(),
+                j["point"]["sun_path"]["sun_hours_estimate"].get<double>());
   if (!exr_path.empty()) std::printf("wrote     %s and %s\n", exr_path.string().c_str(), png_path.string().c_str());
 }
 
@@ -269,6 +295,9 @@ CLI::App* setup_sky(CLI::App& app) {
       ->delimiter(',');
   sub->add_option("--normal", o->normal, "With --at: the face's normal NX,NY,NZ (default 0,0,1)")->delimiter(',');
   sub->add_option("--mesh", o->meshes, "With --at: mesh or city model file; repeat for several")->check(CLI::ExistingFile);
+  sub->add_flag("--sun-path", o->sun_path,
+                "With --at and --lat/--lon/--time: draw the sun's path through that day, every 10 min (larger dots at the\n"
+                "hours; yellow where the point sees the sun, dark orange where it is hidden)");
   sub->add_option("--size", o->size, "Fisheye image size in pixels (default 512)");
   o->o_exposure = sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic, log-average key 0.18)");
   sub->add_flag("--half", o->half, "Store the EXR as half floats (default 32-bit float)");

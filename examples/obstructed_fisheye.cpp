@@ -1,5 +1,7 @@
 #include "examples/obstructed_fisheye.h"
 
+#include "examples/bitmap_font.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,38 +15,6 @@ namespace skyband::cli {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// 5 × 7 glyphs of the compass letters, rows top to bottom, bit 4 the leftmost column.
-constexpr std::array<std::uint8_t, 7> kGlyphN{0b10001, 0b11001, 0b10101, 0b10011, 0b10001, 0b10001, 0b10001};
-constexpr std::array<std::uint8_t, 7> kGlyphE{0b11111, 0b10000, 0b10000, 0b11110, 0b10000, 0b10000, 0b11111};
-constexpr std::array<std::uint8_t, 7> kGlyphS{0b01111, 0b10000, 0b10000, 0b01110, 0b00001, 0b00001, 0b11110};
-constexpr std::array<std::uint8_t, 7> kGlyphW{0b10001, 0b10001, 0b10001, 0b10101, 0b10101, 0b10101, 0b01010};
-
-void put(std::vector<std::uint8_t>& img, int size, int col, int row, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-  if (col < 0 || row < 0 || col >= size || row >= size) return;
-  std::uint8_t* p = &img[(std::size_t(row) * std::size_t(size) + std::size_t(col)) * 3];
-  p[0] = r, p[1] = g, p[2] = b;
-}
-
-// A glyph centred on (cx, cy), white on a black outline, `scale` pixels per glyph pixel.
-void glyph(std::vector<std::uint8_t>& img, int size, const std::array<std::uint8_t, 7>& g, int cx, int cy, int scale) {
-  const int x0 = cx - 5 * scale / 2, y0 = cy - 7 * scale / 2;
-  for (int pass = 0; pass < 2; ++pass)
-    for (int r = 0; r < 7; ++r)
-      for (int c = 0; c < 5; ++c) {
-        if (!(g[std::size_t(r)] & (1 << (4 - c)))) continue;
-        for (int dy = 0; dy < scale; ++dy)
-          for (int dx = 0; dx < scale; ++dx) {
-            const int x = x0 + c * scale + dx, y = y0 + r * scale + dy;
-            if (pass == 0) {
-              for (int oy = -1; oy <= 1; ++oy)
-                for (int ox = -1; ox <= 1; ++ox) put(img, size, x + ox, y + oy, 0, 0, 0);
-            } else {
-              put(img, size, x, y, 255, 255, 255);
-            }
-          }
-      }
-}
 
 }  // namespace
 
@@ -60,7 +30,8 @@ bool fisheye_direction(int size, int col, int row, Vec3& d) {
 }
 
 ObstructedFisheye render_obstructed_fisheye(const Scene& scene, const QueryPoint& q, int size,
-                                            const std::function<Vec3(const Vec3&)>& radiance_rgb, double exposure) {
+                                            const std::function<Vec3(const Vec3&)>& radiance_rgb, double exposure,
+                                            std::span<const SunPathMark> sun_path) {
   ObstructedFisheye f;
   f.size = size;
   const std::size_t n = std::size_t(size) * std::size_t(size);
@@ -97,25 +68,52 @@ ObstructedFisheye render_obstructed_fisheye(const Scene& scene, const QueryPoint
       f.picture[i * 3 + std::size_t(c)] = std::uint8_t(std::lround(255.0 * (seen[i] ? display : grey * 0.8)));
     }
   }
+  Picture pic(size, size, Rgb8{});
+  pic.rgb = std::move(f.picture);
+  // Picture position of a direction above the horizon (equi-angular, north up, east left).
+  const auto position = [size](double azimuth_rad, double elevation_deg, int& col, int& row) {
+    const double r = (90.0 - elevation_deg) / 90.0;
+    const double u = -std::sin(azimuth_rad) * r, v = std::cos(azimuth_rad) * r;
+    col = int(std::floor((u + 1.0) * 0.5 * size));
+    row = int(std::floor((1.0 - v) * 0.5 * size));
+  };
   // The exact horizon (normal up), every 0.25°.
   constexpr double kStep = 0.25;
   const QueryPoint up{q.position, Vec3(0, 0, 1)};
+  const int dot = size / 256;
   for_each_horizon_profile(scene, std::span<const QueryPoint>(&up, 1), VisibilityOptions{}, kStep, 1, {},
                            [&](std::size_t, std::size_t, std::span<const double> e) {
                              for (std::size_t k = 0; k < e.size(); ++k) {
                                if (!(e[k] > 0)) continue;
-                               const double az = double(k) * kStep * kPi / 180.0, r = (90.0 - e[k]) / 90.0;
-                               const double u = -std::sin(az) * r, v = std::cos(az) * r;  // east left
-                               const int col = int(std::floor((u + 1.0) * 0.5 * size)), row = int(std::floor((1.0 - v) * 0.5 * size));
-                               for (int dy = 0; dy <= size / 256; ++dy)
-                                 for (int dx = 0; dx <= size / 256; ++dx) put(f.picture, size, col + dx, row + dy, 230, 30, 30);
+                               int col = 0, row = 0;
+                               position(double(k) * kStep * kPi / 180.0, e[k], col, row);
+                               pic.fill_rect(col, row, col + dot + 1, row + dot + 1, Rgb8{230, 30, 30});
                              }
                            });
+  // The sun's path: seen yellow, hidden dark orange.
+  for (const SunPathMark& m : sun_path) {
+    if (!(m.direction.z() > 0)) continue;
+    ++f.sun_marks_up;
+    const bool seen = vis.direction_visible(q, m.direction);
+    if (seen) ++f.sun_marks_seen;
+    const double elevation = std::asin(std::min(1.0, m.direction.z())) * 180.0 / kPi;
+    int col = 0, row = 0;
+    position(std::atan2(m.direction.x(), m.direction.y()), elevation, col, row);
+    const int r = (m.hour ? 3 : 1) * std::max(1, size / 512);
+    const Rgb8 c = seen ? Rgb8{255, 220, 0} : Rgb8{150, 80, 0};
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (dx * dx + dy * dy <= r * r) pic.put(col + dx, row + dy, c);
+  }
+  // N, E, S, W at the rim (east left), white on black.
   const int scale = std::max(1, size / 128), m = 6 * scale;
-  glyph(f.picture, size, kGlyphN, size / 2, m, scale);
-  glyph(f.picture, size, kGlyphS, size / 2, size - m, scale);
-  glyph(f.picture, size, kGlyphE, m, size / 2, scale);
-  glyph(f.picture, size, kGlyphW, size - m, size / 2, scale);
+  const Rgb8 white{255, 255, 255}, black{0, 0, 0};
+  const auto label = [&](const char* t, int cx, int cy) { draw_text(pic, cx - text_width(t, scale) / 2, cy - text_height(scale) / 2, t, scale, white, &black); };
+  label("N", size / 2, m);
+  label("S", size / 2, size - m);
+  label("E", m, size / 2);
+  label("W", size - m, size / 2);
+  f.picture = std::move(pic.rgb);
   return f;
 }
 

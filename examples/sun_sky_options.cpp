@@ -91,6 +91,11 @@ SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& w
   return p;
 }
 
+LocalDateTime SunSkyOptions::local_time(const std::string& needed_by) const {
+  if (o_time_->count() == 0) throw InputError(needed_by + " needs --time (its date, with --lat and --lon)");
+  return parse_iso8601(time_, "--time", utc_offset_given());
+}
+
 std::optional<double> SunSkyOptions::utc_offset_given() const {
   return o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt;
 }

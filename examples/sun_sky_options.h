@@ -50,6 +50,8 @@ class SunSkyOptions {
   SunPlacement sun_at(const LocalDateTime& time, const std::string& where) const;
   // --tz when given.
   std::optional<double> utc_offset_given() const;
+  // --time parsed (with --tz for a time without an offset); InputError when --time is missing.
+  LocalDateTime local_time(const std::string& needed_by) const;
   // Atmosphere parameters (validated) and the sky model spec (validated).
   AtmosphereParams atmosphere() const;
   SkyModelSpec sky_spec() const;

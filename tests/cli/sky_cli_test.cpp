@@ -227,3 +227,33 @@ BOOST_AUTO_TEST_CASE(fisheye_of_a_point_in_a_model) {
     BOOST_TEST(r.err.find(what) != std::string::npos, r.err);
   }
 }
+
+// --sun-path on the fisheye of a point: at the equator on the March equinox the sun is above the
+// horizon for 12 h plus the few minutes refraction and its disc's radius add (the SPA's
+// sunrise-sunset convention, ~4 min at each end): 72–74 of the day's ten-minute marks. On the
+// cube's roof all of them are seen; on the ground 5 m west of the cube (its 10 m wall hides the
+// east up to atan(10/5) = 63.4°: the morning sun) fewer, and the hidden marks are drawn dark
+// orange.
+BOOST_AUTO_TEST_CASE(sun_path_on_a_point_fisheye) {
+  const fs::path d = work_dir();
+  skyband::test::write_cube_obj(d / "cube.obj");
+  const std::string common = " --mesh '" + (d / "cube.obj").string() + "' --size 256 --lat 0 --lon 0 --time 2026-03-20T12:00Z --sun-path";
+  json j = run_json("--at 5,5,10 --out '" + (d / "path_roof.exr").string() + "'" + common);
+  const std::size_t up = j["point"]["sun_path"]["marks_above_horizon"].get<std::size_t>();
+  BOOST_TEST(up >= 72u);
+  BOOST_TEST(up <= 74u);
+  BOOST_TEST(j["point"]["sun_path"]["marks_seen"].get<std::size_t>() == up);
+  j = run_json("--at -5,5,0 --out '" + (d / "path_west.exr").string() + "'" + common);
+  const std::size_t seen = j["point"]["sun_path"]["marks_seen"].get<std::size_t>();
+  // The wall hides the sun from sunrise until it stands 63.4° high in the east (at the equator
+  // on the equinox the sun climbs 15° an hour through the zenith: ~4.2 h): ~25 marks hidden.
+  BOOST_TEST(seen + 20 < up);
+  BOOST_TEST(seen + 30 > up);
+  const skyband::PngImage png = skyband::read_png_rgb8(d / "path_west.png");
+  std::size_t hidden = 0;
+  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) hidden += png.rgb[i] == 150 && png.rgb[i + 1] == 80 && png.rgb[i + 2] == 0;
+  BOOST_TEST(hidden > 20u);
+  const RunResult r = run("--sun-path --lat 0 --lon 0 --time 2026-03-20T12:00Z --out '" + (d / "x.exr").string() + "'");
+  BOOST_TEST(r.exit_code == 2, r.err);
+  BOOST_TEST(r.err.find("--sun-path") != std::string::npos, r.err);
+}
