@@ -13,7 +13,7 @@
 // provenance record beside it; the counts of nodes left out go to stderr.
 //
 //   skyband points facades --mesh FILE [--mesh FILE ...] --spacing S [--offset D]
-//                          [--surfaces wall,roof] [--lod L] --out POINTS.csv
+//                          [--surfaces wall,roof] [--lod L] [--threads K] --out POINTS.csv
 //
 // Facade (and roof) points (geometry/facade_points.h): the cell centres of an S grid in each
 // wall triangle's plane, moved D metres (default 0.1) along the outward normal, none on party
@@ -56,6 +56,7 @@ struct FacadeArgs {
   std::string out, lod;
   double spacing = 0, offset = 0.1;
   std::vector<std::string> surfaces{"wall"};
+  int threads = 0;
   bool quiet = false;
 };
 
@@ -148,6 +149,8 @@ void run_facades(const FacadeArgs& a) {
   FacadePointsOptions opt;
   opt.spacing_m = a.spacing;
   opt.offset_m = a.offset;
+  if (a.threads < 0) throw InputError("--threads " + std::to_string(a.threads) + ": give 0 (all cores) or a positive count");
+  opt.threads = a.threads;
   parse_surfaces(a.surfaces, opt);
   std::vector<std::pair<std::string, std::string>> inputs;
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
@@ -222,6 +225,7 @@ CommandRegistration registration{"points", [](CLI::App& app) {
   facades->add_option("--surfaces", fargs->surfaces, "Surfaces to cover: wall, roof or wall,roof (default wall)")->delimiter(',');
   facades->add_option("--lod", fargs->lod, "City models: read every object at this LoD (default: each object's highest)");
   facades->add_option("--out", fargs->out, "Output points CSV, written atomically");
+  facades->add_option("--threads", fargs->threads, "Worker threads (default 0: all cores; the output does not depend on it)");
   facades->add_flag("--quiet", fargs->quiet, "No mesh report on stderr");
   facades->callback([fargs] { run_facades(*fargs); });
   return cmd;

@@ -78,6 +78,7 @@ struct FacadePointsOptions {
   double offset_m = 0.1;   // D, in (0, 100]
   bool walls = true, roofs = false;
   std::size_t max_cells = 20'000'000;  // grid cells over the candidate faces; InputError beyond
+  int threads = 0;                     // 0 = all cores; the output does not depend on it
 };
 
 struct FacadePoint {

@@ -303,8 +303,22 @@ BOOST_AUTO_TEST_CASE(facades_errors) {
       {mesh + " --spacing 1 --offset -0.1" + out, "--offset -0.1"},
       {mesh + " --spacing 1 --offset inf" + out, "--offset"},
       {mesh + " --spacing 1 --surfaces wall,door" + out, "--surfaces door"},
+      {mesh + " --spacing 1 --threads -1" + out, "--threads -1"},
       {mesh + " --spacing 0.0001" + out, "grid cells over the model's faces"},
       {mesh + " --spacing 1 --out " + q(d / "missing" / "f.csv"), "missing"},
       {"points facades --mesh " + q(d / "absent.obj") + " --spacing 1" + out, "absent.obj"},
   }, d / "f.csv");
+}
+
+// The same CSV whatever the thread count (faces in chunks, joined in order), on the shared
+// Rotterdam CityJSON subset.
+BOOST_AUTO_TEST_CASE(facades_do_not_depend_on_threads) {
+  const fs::path d = skyband::test::test_folder("points_cli_facades_threads");
+  const fs::path model = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "rotterdam_subset.city.json";
+  for (const char* t : {"1", "2"}) {
+    const auto r = run_skyband("points facades --mesh " + q(model) + " --spacing 0.5 --surfaces wall,roof --threads " + t +
+                               " --out " + q(d / (std::string("t") + t + ".csv")) + " --quiet");
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  }
+  BOOST_TEST(slurp(d / "t1.csv") == slurp(d / "t2.csv"));
 }
