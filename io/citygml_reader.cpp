@@ -116,6 +116,41 @@ void check_text_lengths(const std::string& name, const std::string& bytes) {
   }
 }
 
+// Every gml:posList / gml:pos must be plain text of 3·n numbers up to its end tag: libcitygml
+// keeps only the piece of a text after its last interruption, so a comment, CDATA section,
+// character reference or child element inside a coordinate list would silently cut the ring
+// (measured), and a trailing 1 or 2 numbers are dropped without a word.
+void check_coordinate_lists(const std::string& name, const std::string& bytes) {
+  for (std::size_t lt = bytes.find('<'); lt != std::string::npos; lt = bytes.find('<', lt + 1)) {
+    std::size_t n = lt + 1;
+    while (n < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[n])) && bytes[n] != '>' && bytes[n] != '/') ++n;
+    const std::string_view qname(bytes.data() + lt + 1, n - lt - 1);
+    const std::size_t colon = qname.rfind(':');
+    const std::string_view local = colon == std::string_view::npos ? qname : qname.substr(colon + 1);
+    if (local != "posList" && local != "pos") continue;
+    const std::size_t tag_end = bytes.find('>', n);
+    if (tag_end == std::string::npos || bytes[tag_end - 1] == '/') continue;  // malformed (Xerces says so) or empty
+    const std::size_t text_end = bytes.find('<', tag_end + 1);
+    const std::string end_tag = "</" + std::string(qname);
+    auto fail = [&](const std::string& what) {
+      throw InputError(name + ":" + std::to_string(line_of(bytes, lt)) + ": <" + printable_text(qname) + "> " + what);
+    };
+    if (text_end == std::string::npos || bytes.compare(text_end, end_tag.size(), end_tag) != 0)
+      fail("holds a comment, CDATA section or element: only plain numbers are read (libcitygml would drop the part before it)");
+    const std::string_view text(bytes.data() + tag_end + 1, text_end - tag_end - 1);
+    if (text.find('&') != std::string_view::npos)
+      fail("holds a character or entity reference: only plain numbers are read (libcitygml would drop the part before it)");
+    std::size_t numbers = 0;
+    for (std::size_t i = 0; i < text.size();) {
+      while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      if (i < text.size()) ++numbers;
+      while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    }
+    if (numbers % 3 != 0) fail("holds " + std::to_string(numbers) + " numbers, not x y z triples");
+    lt = text_end;
+  }
+}
+
 std::vector<std::string> srs_names(const std::string& bytes) {
   std::vector<std::string> out;
   for (std::size_t i = bytes.find("srsName="); i != std::string::npos; i = bytes.find("srsName=", i + 8)) {
@@ -151,6 +186,7 @@ FileScan scan_bytes(const std::string& name, const std::string& bytes) {
                      "> declares neither http://www.opengis.net/citygml/2.0 nor http://www.opengis.net/citygml/1.0");
   }
   check_text_lengths(name, bytes);
+  check_coordinate_lists(name, bytes);
   scan.srs_names = srs_names(bytes);
   return scan;
 }

@@ -13,6 +13,9 @@
 //  - no text node (a gml:posList) longer than 1 000 000 bytes: libcitygml keeps only the last
 //    chunk of a text node that Xerces delivers in pieces (measured: texts over 1 MiB lose their
 //    start, the ring is cut mid-number, silently), so such a file is refused with its line;
+//  - every gml:posList / gml:pos is plain text of x y z triples up to its end tag: libcitygml
+//    keeps only the piece after a comment, CDATA section, character reference or child element
+//    inside it, and drops 1 or 2 trailing numbers, silently (measured), so those are refused;
 //  - the srsName attributes (all of them must name the same EPSG codes);
 //  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
 //    Xerces' message without its line and leaks what it had built, so it only sees

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <array>
 #include <set>
 #include <sstream>
 #include <string>
@@ -383,6 +384,14 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   std::string overflow = good;
   overflow.replace(overflow.find("10.125"), 6, "1e999");
   BOOST_TEST(error_of("overflow.gml", overflow).find("not a finite number") != std::string::npos);
+  // What libcitygml would cut silently (it keeps the text after the last interruption): refused.
+  for (const auto& [label, insert, expect] : std::vector<std::array<std::string, 3>>{
+           {"comment.gml", " <!-- a comment --> ", "comment"}, {"charref.gml", "&#32;", "character or entity reference"},
+           {"cdata.gml", "<![CDATA[ 1 ]]>", "CDATA"}, {"extra.gml", " 7", "not x y z triples"}}) {
+    std::string t = good;
+    t.insert(t.find(" ", t.find("<gml:posList srsDimension=\"3\">") + 31), insert);
+    BOOST_TEST(error_of(label, t).find(expect) != std::string::npos, label);
+  }
   std::string flat = good;
   flat.replace(flat.find("<gml:posList srsDimension=\"3\">"), 30, "<gml:posList srsDimension=\"2\">");
   BOOST_TEST(error_of("2d.gml", flat).find("srsDimension") != std::string::npos);
