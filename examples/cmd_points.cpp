@@ -145,13 +145,14 @@ void parse_surfaces(const std::vector<std::string>& names, FacadePointsOptions& 
 void run_facades(const FacadeArgs& a) {
   if (a.meshes.empty()) throw InputError("points facades: at least one --mesh FILE is required");
   if (a.out.empty()) throw InputError("points facades: --out FILE.csv is required");
-  if (!std::isfinite(a.spacing) || !(a.spacing > 0)) throw InputError("points facades: --spacing S (metres, > 0) is required");
+  if (a.spacing == 0) throw InputError("points facades: --spacing S (metres, > 0) is required");
   FacadePointsOptions opt;
   opt.spacing_m = a.spacing;
   opt.offset_m = a.offset;
   if (a.threads < 0) throw InputError("--threads " + std::to_string(a.threads) + ": give 0 (all cores) or a positive count");
   opt.threads = a.threads;
   parse_surfaces(a.surfaces, opt);
+  check_facade_options(opt);
   std::vector<std::pair<std::string, std::string>> inputs;
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
   check_output_file("--out", a.out, inputs);

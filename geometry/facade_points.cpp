@@ -493,13 +493,17 @@ FacadePoints FacadeBuilder::run(int threads) {
 
 }  // namespace
 
-FacadePoints make_facade_points(const Scene& scene, const FacadePointsOptions& options) {
+void check_facade_options(const FacadePointsOptions& options) {
   // Finiteness first: an ordered comparison with a NaN raises FE_INVALID (tests/fp_traps.cpp).
   if (!std::isfinite(options.spacing_m) || !(options.spacing_m > 0))
     throw InputError("--spacing " + number(options.spacing_m) + ": must be a positive distance in metres");
   if (!std::isfinite(options.offset_m) || !(options.offset_m > 0) || options.offset_m > 100)
     throw InputError("--offset " + number(options.offset_m) + ": must be a distance in metres within (0, 100]");
   if (!options.walls && !options.roofs) throw InputError("--surfaces: name at least one of wall, roof");
+}
+
+FacadePoints make_facade_points(const Scene& scene, const FacadePointsOptions& options) {
+  check_facade_options(options);
   if (scene.soup().triangles.empty()) throw InputError("the model has no triangles: no surfaces to put points on");
   return FacadeBuilder(scene, options).run(options.threads);
 }

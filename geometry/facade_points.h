@@ -107,8 +107,11 @@ struct FacadePoints {
   std::size_t from_winding = 0;   // kept, outward taken from the winding (open on both sides)
 };
 
-// Throws InputError for a spacing or offset out of range, no surface class asked for, or more
-// than max_cells grid cells over the faces.
+// Throws InputError for a spacing or offset out of range or no surface class asked for.
+void check_facade_options(const FacadePointsOptions& options);
+
+// Throws InputError as check_facade_options, and for more than max_cells grid cells over the
+// faces.
 FacadePoints make_facade_points(const Scene& scene, const FacadePointsOptions& options);
 
 }  // namespace skyband

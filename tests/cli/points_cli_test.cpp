@@ -297,8 +297,9 @@ BOOST_AUTO_TEST_CASE(facades_errors) {
   skyband::test::check_bad_input({
       {mesh + out, "--spacing"},
       {mesh + " --spacing 1", "--out"},
-      {mesh + " --spacing -2" + out, "--spacing"},
+      {mesh + " --spacing -2" + out, "--spacing -2"},
       {mesh + " --spacing 0" + out, "--spacing"},
+      {mesh + " --spacing nan" + out, "--spacing nan"},
       {mesh + " --spacing 1 --offset 0" + out, "--offset 0"},
       {mesh + " --spacing 1 --offset -0.1" + out, "--offset -0.1"},
       {mesh + " --spacing 1 --offset inf" + out, "--offset"},
