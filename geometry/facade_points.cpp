@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "geometry/disjoint_sets.h"
@@ -234,6 +235,7 @@ class FacadeBuilder {
   Side outward_by_vote(Scratch& sc, const Vec3& p, const FaceFrame& f, std::uint32_t group);
   bool covered(Scratch& sc, const Vec3& p, const Vec3& n_out, std::uint32_t face, const FaceGrid& g, const Vec3& centre_uv);
   bool under_terrain(Scratch& sc, const Vec3& x);
+  bool under_a_roof_from_inside(Scratch& sc, const Vec3& x);
   bool inside_building(Scratch& sc, const Vec3& x, const FaceFrame& f, std::uint32_t face);
 
   const Scene& scene_;
@@ -351,6 +353,25 @@ bool FacadeBuilder::under_terrain(Scratch& sc, const Vec3& x) {
   return hit;
 }
 
+// Whether the first surface straight above x faces up, away from x, by the parity test of its
+// own group at the hit: x is then under a roof seen from inside. This catches a neighbour that
+// overlaps the face within one connected component, where the component's parity (their
+// symmetric difference) hides it from the horizontal rays.
+bool FacadeBuilder::under_a_roof_from_inside(Scratch& sc, const Vec3& x) {
+  const std::optional<RayHit> hit = scene_.intersect(Ray{x, Vec3(0, 0, 1), 0, 1e300});
+  if (!hit) return false;
+  const std::uint32_t t = hit->triangle, group = groups_.of_triangle[t];
+  if (group == kNoGroup || zero_area_[t]) return false;
+  const Vec3 &a = corner(t, 0), &b = corner(t, 1), &c = corner(t, 2);
+  const Vec3 n = (b - a).cross(c - a);
+  if (!(n.squaredNorm() > 0)) return false;
+  const FaceFrame f = face_frame(n.normalized());
+  const Vec3 h = a + hit->u * (b - a) + hit->v * (c - a);
+  const Side side = outward_side(sc, h, f, group);
+  if (side != Side::plus && side != Side::minus) return false;
+  return (side == Side::plus ? f.n.z() : -f.n.z()) > 0;
+}
+
 // Whether x lies inside a building: a group whose box holds x, crossed an odd number of times
 // by each of four horizontal rays from x (±h1, ±h2). The point's own face counts as part of
 // every group, so that a neighbour closed by this face (a party wall modelled once, in this
@@ -428,7 +449,7 @@ void FacadeBuilder::add_face_points(Scratch& sc, std::uint32_t t, const FaceGrid
       if (covered(sc, p, n_out, t, g, centre_uv)) { ++out.covered; continue; }
       const Vec3 x = p + o_.offset_m * n_out;
       if (has_terrain_ && under_terrain(sc, x)) { ++out.underground; continue; }
-      if (inside_building(sc, x, g.frame, t)) { ++out.inside; continue; }
+      if (inside_building(sc, x, g.frame, t) || under_a_roof_from_inside(sc, x)) { ++out.inside; continue; }
       FacadePoint fp;
       fp.position = x;
       fp.normal = n_out;

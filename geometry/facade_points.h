@@ -54,11 +54,13 @@
 //     box holds it and which each of four horizontal rays from it (two opposite pairs) crosses an
 //     odd number of times (so that one open wall in front does not count as a building, while a
 //     floorless or roofless one does), the point's own face counting as part of every group (a
-//     neighbour whose party wall is modelled only here is closed by it).
+//     neighbour whose party wall is modelled only here is closed by it); or the first surface
+//     straight above the offset point faces up, away from it, by the outward test of that
+//     surface's own group at the hit (under a roof seen from inside).
 // Limitation: without objects, buildings overlapping one another within one connected
-// component are seen through the parity of the component (their symmetric difference): a
-// point can then land inside an overlapping neighbour. City models with objects do not have
-// this limit.
+// component are seen through the parity of the component (their symmetric difference); the
+// roof-above test catches such a point under the neighbour's roof, not every case. City
+// models with objects do not have this limit.
 // Floating-point constructions: the (u, v) frame, the projected corners, the centres, the 3D
 // point (from the frame) and the offset — no decision depends on them beyond the inputs
 // of the exact predicates.

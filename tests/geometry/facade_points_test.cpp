@@ -186,6 +186,29 @@ BOOST_AUTO_TEST_CASE(overlapping_neighbour) {
   BOOST_TEST(fp.points.size() == 360u);
 }
 
+// The same overlap within one connected component (a zero-area sliver joins a corner of each
+// box, as fan-triangulated slivers do in real models): the component's parity is that of the
+// boxes' symmetric difference, so the two walls inside the overlap look outward into it, where
+// each finds the other 0.05 m in front: 120 covered, 360 points as before.
+BOOST_AUTO_TEST_CASE(overlapping_neighbour_in_one_component) {
+  TriangleSoup s;
+  add_box(s, 0, 0, 0, 10, 10, 6);
+  add_box(s, 9.95, 0, 0, 19.95, 10, 6);
+  const auto base = std::uint32_t(s.vertices.size());
+  s.vertices.insert(s.vertices.end(), {{10, 0, 6}, {9.95, 0, 6}});
+  s.triangles.push_back({base, base + 1, base});
+  const Scene scene(s);
+  const FacadePoints fp = make_facade_points(scene, FacadePointsOptions{});
+  BOOST_TEST(fp.group_names.size() == 1u);
+  BOOST_TEST(fp.centres == 480u);
+  BOOST_TEST(fp.covered == 120u);
+  BOOST_TEST(fp.points.size() == 360u);
+  for (const FacadePoint& p : fp.points) {
+    BOOST_TEST(!strictly_inside(p.position, 0, 0, 0, 10, 10, 6));
+    BOOST_TEST(!strictly_inside(p.position, 9.95, 0, 0, 19.95, 10, 6));
+  }
+}
+
 // An open box without floor: the walls still get their 240 points, outward (horizontal rays
 // find the enclosure), and the roof its 100, up.
 BOOST_AUTO_TEST_CASE(open_box_without_floor) {
