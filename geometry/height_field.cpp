@@ -84,7 +84,11 @@ class CornerVertices {
         else h[n++] = z;
       }
     if (floor) h[n++] = floor_z;
-    std::sort(h.begin(), h.begin() + long(n));
+    // Insertion sort of the n ≤ 5 heights: the result std::sort gives for so few (its final
+    // insertion sort, strict <, stable), written out because GCC 12's -Warray-bounds cannot see
+    // n ≤ 5 through std::sort's other branches at -O3.
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = i; j > 0 && h[j] < h[j - 1]; --j) std::swap(h[j], h[j - 1]);
     return std::size_t(std::unique(h.begin(), h.begin() + long(n)) - h.begin());
   }
 
