@@ -140,7 +140,9 @@ FaceFrame face_frame(Vec3 n) {
   f.n = n;
   const double h = std::hypot(n.x(), n.y());
   f.u = h > 0 ? Vec3(-n.y() / h, n.x() / h, 0) : Vec3(1, 0, 0);
-  f.s = n.cross(f.u);
+  // On a vertical face s is (0, 0, 1) exactly (n × u rounds its z to within an ulp of 1), so
+  // that the rows sit at z = (j + ½)·S to the last digit.
+  f.s = n.z() == 0 ? Vec3(0, 0, 1) : Vec3(n.cross(f.u));
   return f;
 }
 
