@@ -6,7 +6,7 @@
 //                      [--threads K] [--quiet]
 //   skyband irradiance --demo --sun-altitude DEG [--sun-azimuth DEG]
 //   skyband irradiance --mesh ... --points ... --out ... --times TIMES.csv [--lat DEG --lon DEG] [sky options]
-//   skyband irradiance --mesh ... --points ... --out ... --weather FILE.epw [--from MM-DD --to MM-DD]
+//   skyband irradiance --mesh ... --points ... --out ... --weather FILE.epw|FILE.csv (EPW or TMY3) [--from MM-DD --to MM-DD]
 //                      [--albedo R] [--ground-materials NAME,...] [--sun-at start|middle|end]
 //
 // Points as for `skyband svf` (metres, z up; normals default to +z). Per point, on the plane of
@@ -49,6 +49,7 @@
 #include "io/csv_table.h"
 #include "io/points_csv.h"
 #include "io/epw_reader.h"
+#include "io/tmy3_reader.h"
 #include "io/hourly_netcdf.h"
 #include "lighting/climate_irradiation.h"
 #include "lighting/moment_series.h"
@@ -298,7 +299,7 @@ void run_weather(const IrradianceArgs& a) {
   opt.threads = a.job.threads;
   if (a.o_ground->count()) opt.ground_materials = a.ground_materials;
 
-  WeatherSeries series = read_epw(a.weather);
+  WeatherSeries series = read_weather_file(a.weather);
   if (from) {
     series = select_period(series, *from, *to);
     if (series.records.empty())
@@ -491,7 +492,7 @@ CommandRegistration registration{"irradiance", [](CLI::App& app) {
                   "CSV of moments: 'time' (ISO 8601, with --lat --lon) or 'sun_altitude','sun_azimuth' (degrees), "
                   "optional 'hours' (default 1); outputs sums over them instead of one moment (see --help above)");
   cmd->add_option("--weather", args->weather,
-                  "EnergyPlus weather file (EPW): sums over its period under the Perez all-weather sky, the sun and the "
+                  "Weather file, EnergyPlus EPW or NREL TMY3 CSV (told by content): sums over its period under the Perez all-weather sky, the sun and the "
                   "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
                   "(broadband shortwave), global_klxh, sun_hours");
   cmd->add_option("--hourly", args->hourly,

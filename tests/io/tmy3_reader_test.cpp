@@ -1,0 +1,175 @@
+#define BOOST_TEST_MODULE tmy3_reader
+#include <boost/test/unit_test.hpp>
+
+// NREL TMY3 CSV input (io/tmy3_reader.h). The shared Chicago O'Hare file is NREL TMY3 data in
+// EPW form: written back here as TMY3 CSV (the User's Manual's column names and -9900 missing
+// code, by a plain field copy independent of both readers), it must give the EPW reader's series
+// record for record. Then the format's own rules and every refused input.
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/input_error.h"
+#include "io/epw_reader.h"
+#include "io/tmy3_reader.h"
+
+using namespace skyband;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kChicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+
+fs::path temp_dir() {
+  const fs::path p = fs::temp_directory_path() / ("skyband_tmy3_reader_test_" + std::to_string(::getpid()));
+  fs::create_directories(p);
+  return p;
+}
+
+fs::path write_text(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string v; std::getline(ss, v, ',');) out.push_back(v);
+  return out;
+}
+
+const char* kHeader =
+    "Date (MM/DD/YYYY),Time (HH:MM),ETR (W/m^2),ETRN (W/m^2),GHI (W/m^2),GHI source,GHI uncert (%),DNI (W/m^2),"
+    "DNI source,DNI uncert (%),DHI (W/m^2),DHI source,DHI uncert (%),GH illum (lx),GH illum source,"
+    "Global illum uncert (%),DN illum (lx),DN illum source,DN illum uncert (%),DH illum (lx),DH illum source,"
+    "DH illum uncert (%),Dry-bulb (C),Dry-bulb source,Dry-bulb uncert (code),Dew-point (C),Dew-point source,"
+    "Dew-point uncert (code),Alb (unitless),Alb source,Alb uncert (code)\n";
+
+// An EPW record's line as a TMY3 record: EPW fields (1-based) 2, 3, 1 date; 4 hour; 11, 12 ETR,
+// ETRN; 14–16 radiation; 17–19 illuminance; 7 dry bulb; 8 dew point; 33 albedo. EPW missing
+// codes (999999 lux, 99.9 °C, 999 albedo) become -9900.
+std::string tmy3_line(const std::string& epw_line) {
+  const auto f = split(epw_line);
+  const auto at = [&](int k) { return f[std::size_t(k - 1)]; };
+  const auto lux = [&](int k) { return std::stod(at(k)) >= 999900 ? std::string("-9900") : at(k); };
+  char date[32];
+  std::snprintf(date, sizeof date, "%02d/%02d/%04d,%02d:00", std::stoi(at(2)), std::stoi(at(3)), std::stoi(at(1)), std::stoi(at(4)));
+  const std::string dew = std::stod(at(8)) >= 99.9 ? "-9900" : at(8);
+  const std::string albedo = std::stod(at(33)) >= 999 ? "-9900" : at(33);
+  return std::string(date) + "," + at(11) + "," + at(12) + "," + at(14) + ",1,8," + at(15) + ",1,8," + at(16) + ",1,8," + lux(17) +
+         ",1,8," + lux(18) + ",1,8," + lux(19) + ",1,8," + at(7) + ",A,7," + dew + ",A,7," + albedo + ",F,8\n";
+}
+
+const std::string kSite = "725300,\"CHICAGO OHARE INTL AP\",IL,-6.0,41.983,-87.917,201\n";
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series) {
+  std::ifstream in(kChicago);
+  std::string line, csv = "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n" + std::string(kHeader);
+  for (int k = 0; std::getline(in, line); ++k)
+    if (k >= 8) csv += tmy3_line(line);
+  const fs::path f = write_text("chicago_tmy3.csv", csv);
+  const WeatherSeries a = read_epw(kChicago), b = read_weather_file(f);
+  BOOST_TEST(b.location.time_zone_hours == a.location.time_zone_hours);
+  BOOST_TEST(b.location.latitude_deg == a.location.latitude_deg);
+  BOOST_TEST(b.location.longitude_deg == a.location.longitude_deg);
+  BOOST_TEST(b.location.source == "TMY3");
+  BOOST_TEST_REQUIRE(b.records.size() == a.records.size());
+  BOOST_TEST(b.records.size() == 8760u);
+  for (std::size_t i = 0; i < a.records.size(); ++i) {
+    const WeatherRecord &x = a.records[i], &y = b.records[i];
+    BOOST_TEST_REQUIRE((x.month == y.month && x.day == y.day && x.hour == y.hour && x.year == y.year), "record " << i);
+    BOOST_TEST_REQUIRE((x.ghi_Wh_m2 == y.ghi_Wh_m2 && x.dni_Wh_m2 == y.dni_Wh_m2 && x.dhi_Wh_m2 == y.dhi_Wh_m2), "record " << i);
+    BOOST_TEST_REQUIRE((x.global_illuminance_lux == y.global_illuminance_lux && x.direct_illuminance_lux == y.direct_illuminance_lux &&
+                        x.diffuse_illuminance_lux == y.diffuse_illuminance_lux),
+                       "record " << i);
+    BOOST_TEST_REQUIRE((x.dew_point_C == y.dew_point_C && x.albedo == y.albedo), "record " << i);
+  }
+  BOOST_TEST(b.warnings.empty());
+}
+
+BOOST_AUTO_TEST_CASE(hour_ending_records_and_missing_codes) {
+  // Two hours of 1 January: hour 01:00 covers 00:00–01:00, its sun at 00:30 (mid_hour 0.5).
+  const std::string csv = kSite + kHeader +
+                          "01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,-9900,1,0,-9900,1,0,-9900,1,0,-5.0,A,7,-9900,A,7,-9900,F,8\n"
+                          "01/01/1990,02:00,0,0,12,1,8,30,1,8,5,1,8,1200,1,8,2000,1,8,600,1,8,-5.0,A,7,-7.5,A,7,1.5,F,8\n";
+  const WeatherSeries s = read_tmy3_csv(write_text("two.csv", csv));
+  BOOST_TEST(s.location.name == "CHICAGO OHARE INTL AP");  // the manual's quotes removed
+  BOOST_TEST_REQUIRE(s.records.size() == 2u);
+  BOOST_TEST(s.records[0].mid_hour() == 0.5);
+  BOOST_TEST(!s.records[0].global_illuminance_lux.has_value());
+  BOOST_TEST(!s.records[0].dew_point_C.has_value());
+  BOOST_TEST(s.records[1].ghi_Wh_m2 == 12.0);
+  BOOST_TEST(s.records[1].dni_Wh_m2 == 30.0);
+  BOOST_TEST(s.records[1].dhi_Wh_m2 == 5.0);
+  BOOST_TEST(*s.records[1].direct_illuminance_lux == 2000.0);
+  BOOST_TEST(*s.records[1].dew_point_C == -7.5);
+  BOOST_TEST(!s.records[1].albedo.has_value());  // 1.5: invalid, warned
+  BOOST_TEST(s.warnings.size() == 2u);            // a partial year, an invalid albedo
+}
+
+BOOST_AUTO_TEST_CASE(day_month_and_year_wrap) {
+  std::string csv = kSite + kHeader;
+  const auto row = [](const char* date, const char* time) {
+    return std::string(date) + "," + time + ",0,0,1,1,8,0,1,8,1,1,8,0,1,8,0,1,8,0,1,8,0,A,7,0,A,7,0.2,F,8\n";
+  };
+  // After February 28 comes February 29 (a leap-year file) or March 1; after December 31,
+  // January 1 (of the next year: typical years mix years).
+  BOOST_TEST(read_tmy3_csv(write_text("leap.csv", csv + row("02/28/1988", "24:00") + row("02/29/1988", "01:00"))).records.size() == 2u);
+  BOOST_TEST(read_tmy3_csv(write_text("march.csv", csv + row("02/28/1987", "24:00") + row("03/01/1987", "01:00"))).records.size() == 2u);
+  BOOST_TEST(read_tmy3_csv(write_text("wrap.csv", csv + row("12/31/1988", "24:00") + row("01/01/1975", "01:00"))).records.size() == 2u);
+  // 03/01 01:00 → 12/31 24:00 is not one hour on.
+  const std::string m = error_of([&] { read_tmy3_csv(write_text("gap.csv", csv + row("03/01/1988", "01:00") + row("12/31/1988", "24:00"))); });
+  BOOST_TEST(m.find("gap.csv:4: Date (MM/DD/YYYY) = '12/31/1988': the record does not follow the one on line 3") != std::string::npos, m);
+}
+
+BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
+  const std::string ok = "01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n";
+  const auto with = [&](const std::string& record) { return kSite + kHeader + record; };
+  struct Case {
+    std::string name, text, message;
+  };
+  const std::vector<Case> cases{
+      {"empty.csv", "", "a site line and a column line"},
+      {"site.csv", "725300,CHICAGO\n" + std::string(kHeader) + ok, "site.csv:1: the site line has 2 fields"},
+      {"nocol.csv", kSite + "Date (MM/DD/YYYY),Time (HH:MM)\n01/01/1990,01:00\n", "no column 'GHI (W/m^2)'"},
+      {"norec.csv", kSite + kHeader, "no weather records"},
+      {"ghi.csv", with("01/01/1990,01:00,0,0,-9900,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
+       "ghi.csv:3: GHI (W/m^2) = '-9900': missing"},
+      {"neg.csv", with("01/01/1990,01:00,0,0,0,1,0,-3,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
+       "neg.csv:3: DNI (W/m^2) = '-3': negative"},
+      {"nan.csv", with("01/01/1990,01:00,0,0,0,1,0,0,1,0,nan,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
+       "nan.csv:3: DHI (W/m^2) = 'nan': not a number"},
+      {"lux.csv", with("01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,200000,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
+       "GH illum (lx) = '200000'"},
+      {"date.csv", with("13/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'13/01/1990': no such date"},
+      {"time.csv", with("01/01/1990,00:30,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'00:30'"},
+      {"short.csv", with("01/01/1990,01:00,0,0\n"), "short.csv:3: 4 fields for 31 columns"},
+      {"tz.csv", "725300,X,IL,-26,41.98,-87.92,201\n" + std::string(kHeader) + ok, "time zone = '-26'"},
+  };
+  for (const Case& c : cases) {
+    const std::string m = error_of([&] { read_tmy3_csv(write_text(c.name, c.text)); });
+    BOOST_TEST(m.find(c.message) != std::string::npos, c.name << ": " << m);
+  }
+  // Neither format.
+  BOOST_TEST(error_of([&] { read_weather_file(write_text("other.csv", "a,b\n1,2\n")); }).find("neither an EPW file") != std::string::npos);
+  BOOST_TEST(error_of([&] { read_weather_file(temp_dir() / "missing.csv"); }).find("missing.csv: no such weather file") != std::string::npos);
+}
