@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/support/cli_runner.h"
+#include "shared_data.h"
 
 namespace tt = boost::test_tools;
 namespace fs = std::filesystem;
@@ -252,7 +253,7 @@ BOOST_AUTO_TEST_CASE(times_errors) {
 // ground; its south wall sees half the ground, ρ·GHI/2 with the file's albedo; a period is a
 // part of the year; the timing check warns on a file whose radiation comes early (Heino, ~58
 // min per the README).
-BOOST_AUTO_TEST_CASE(a_year_of_weather) {
+BOOST_AUTO_TEST_CASE(a_year_of_weather, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("irradiance_cli_weather");
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\n"
@@ -297,7 +298,7 @@ BOOST_AUTO_TEST_CASE(a_year_of_weather) {
   BOOST_TEST(heino.err.find("earlier than the sun") != std::string::npos, heino.err);
 }
 
-BOOST_AUTO_TEST_CASE(bad_weather_input) {
+BOOST_AUTO_TEST_CASE(bad_weather_input, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("irradiance_cli_weather_bad");
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
@@ -322,7 +323,7 @@ BOOST_AUTO_TEST_CASE(bad_weather_input) {
 // A terrain sheet with a material the defaults do not know hides the ground from the facade
 // points: the command warns, and naming the material with --ground-materials gives the wall its
 // ground again (half the lower hemisphere: ground_view 0.5 for a wall on an open plane).
-BOOST_AUTO_TEST_CASE(unnamed_terrain_is_reported) {
+BOOST_AUTO_TEST_CASE(unnamed_terrain_is_reported, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("irradiance_cli_weather_terrain");
   std::ofstream(d / "block.obj") << "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 10\nv 10 0 10\nv 10 10 10\nv 0 10 10\n"
                                     "v -500 -500 0\nv 500 -500 0\nv 500 500 0\nv -500 500 0\n"
@@ -392,7 +393,7 @@ BOOST_AUTO_TEST_CASE(generated_moments_and_the_sun_only_path) {
 // the sky within 1 % (daylight coefficients on a coarse grid, normalised per hour on the open
 // horizontal face, against the time-integrated sky's quadrature). Time runs forward in UTC: the
 // first interval of Chicago (UTC−6) on June 1st ends at 07:00 UTC.
-BOOST_AUTO_TEST_CASE(hourly_netcdf) {
+BOOST_AUTO_TEST_CASE(hourly_netcdf, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("irradiance_cli_hourly");
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\ntop,5,5,10,0,0,1\nsouthwall,5,0,5,0,-1,0\n";
@@ -439,9 +440,9 @@ BOOST_AUTO_TEST_CASE(hourly_netcdf) {
   nc_close(nc);
 }
 
-// Times files found by hand: `hours` had no upper bound (two rows of 1e308 summed to inf),
-// `sun_azimuth` no range (1e308 accepted), and the SPA's range errors named no file or line; a
-// NUL in a time cut the message short. Now: one line naming file:line and the value, exit 2.
+// Times files at the edges of the format: `hours` is bounded (two rows of 1e308 would sum to inf),
+// `sun_azimuth` has a range (1e308 is refused), the SPA's range errors name the file and line, and
+// a NUL in a time does not cut the message short: one line naming file:line and the value, exit 2.
 BOOST_AUTO_TEST_CASE(times_file_bounds_and_sun_errors_name_the_line) {
   const fs::path d = skyband::test::test_folder("irradiance_cli_times_bounds");
   write_cube(d / "cube.obj");

@@ -17,6 +17,7 @@
 #include "cli/support/cli_runner.h"
 #include "io/exr_writer.h"
 #include "io/png_writer.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using namespace skyband;
@@ -98,7 +99,7 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_the_key) {
 // naming the file and what is wrong — not exit 3 "internal error" (a filesystem_error on a
 // 300-byte file name), not toml++'s undefined behaviour on 'Җ' (U+0496) or on printing
 // `[0.01]` — at once (10 s asserted against a hang), and no image written.
-BOOST_AUTO_TEST_CASE(fuzz_found_scene_inputs_exit_2_naming_file_and_key) {
+BOOST_AUTO_TEST_CASE(fuzz_found_scene_inputs_exit_2_naming_file_and_key, *skyband::test::needs_shared_data()) {
   const fs::path found = fs::path(SKYBAND_SHARED_DATA) / "fuzz-found";
   const fs::path out = work_dir() / "fuzz_found.exr";
   const std::string to = " --quiet --out " + test::shell_quote(out);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/support/cli_runner.h"
+#include "shared_data.h"
 
 namespace tt = boost::test_tools;
 namespace fs = std::filesystem;
@@ -174,13 +175,13 @@ std::size_t count_of(const std::string& s, char c) { return static_cast<std::siz
 
 }  // namespace
 
-// The mesh files fuzzing found (../shared/data/fuzz-found/README.md) through the CLI: before,
-// 4–55 s and gigabytes (the OFF files through OpenMesh, the PLY files looping over 4·10⁹ empty
-// entries), and exit 0 after a caught bad_alloc. Now each ends at once (< 2 s expected, 10 s
-// asserted against a hang), with exit 0 and the output, or exit 2 and one line naming the file.
+// The mesh files fuzzing found (../shared/data/fuzz-found/README.md) through the CLI: files that
+// can cost seconds and gigabytes in a naive reader (OFF through OpenMesh, PLY headers declaring
+// 4·10⁹ empty entries). Each ends at once (< 2 s expected, 10 s asserted against a hang),
+// with exit 0 and the output, or exit 2 and one line naming the file.
 // Expected exits: the files' faces are valid (see tests/io/mesh_reader_test.cpp), except
 // ply_empty_element.ply, which has neither vertices nor faces.
-BOOST_AUTO_TEST_CASE(fuzz_found_meshes_end_at_once) {
+BOOST_AUTO_TEST_CASE(fuzz_found_meshes_end_at_once, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("svf_cli_fuzz_found");
   std::ofstream(d / "pts.csv") << "x,y,z\n0.2,0.2,5\n";
   const std::vector<std::pair<std::string, int>> cases{
@@ -209,7 +210,7 @@ BOOST_AUTO_TEST_CASE(fuzz_found_meshes_end_at_once) {
 // The points files fuzzing found: a pass-through first header cell that begins with U+FEFF
 // (after the file's own byte-order mark, or after a blank line) is written quoted, so it keeps
 // its name when the output is read back (expected bytes: tests/io/points_csv_test.cpp).
-BOOST_AUTO_TEST_CASE(fuzz_found_points_keep_their_first_column_name) {
+BOOST_AUTO_TEST_CASE(fuzz_found_points_keep_their_first_column_name, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("svf_cli_fuzz_found_points");
   write_cube(d / "cube.obj");
   for (const char* file : {"points_roundtrip_double_bom.csv", "points_roundtrip_bom_after_blank_line.csv"}) {
@@ -308,7 +309,7 @@ BOOST_AUTO_TEST_CASE(point_sanity_warnings_and_offset) {
 // (bag_v1_explicit_lod_selects_exactly_that_lod) checks against an independent walk of the JSON;
 // here the flag must reach the reader. A LoD no object has, and --lod on a format without
 // LoDs, are errors.
-BOOST_AUTO_TEST_CASE(lod_selects_the_city_model_level) {
+BOOST_AUTO_TEST_CASE(lod_selects_the_city_model_level, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("svf_cli_lod");
   const fs::path bag = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "3dbag_v1_sample_denhaag.city.json";
   std::ofstream(d / "p.csv") << "x,y,z\n0,0,0\n";

@@ -16,6 +16,7 @@
 #include "geometry/support/real_mesh_points.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"
+#include "shared_data.h"
 
 using namespace skyband;
 
@@ -52,7 +53,7 @@ BOOST_AUTO_TEST_CASE(low_skyline_beyond_the_edge_of_a_city_and_its_facades) {
   check_tolerance(scene, pts, "open-box city");
 }
 
-BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile) {
+BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile, *skyband::test::needs_shared_data()) {
   const TriangleSoup soup = read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj");
   const Scene scene(soup);
   std::vector<QueryPoint> pts = {{Vec3(84818.397554, 447648.962315, -0.42), Vec3(0, 0, 1)}};

@@ -5,8 +5,7 @@
 // of ../shared/data/buildings (README.md there describes each file and its independently checked
 // defect counts, which several expectations below quote).
 //
-// What holds on real data (investigation: /tmp/horizon_real_report.md of the session that wrote
-// this file):
+// What holds on real data (docs/geometry.md, "Exact horizon … Where it applies on real data"):
 //  - Only val3dity_building_v405.off is a column scene as read. Every other file has at least one
 //    component that is not a column solid (open shells, non-manifold party walls, millimetre wall
 //    leans, a terrain sheet), so the method is valid only above that component's highest vertex
@@ -35,6 +34,7 @@
 #include "geometry/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "io/mesh_reader.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -209,7 +209,7 @@ void check_agreement(const Scene& scene, std::span<const QueryPoint> points, std
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(v405_is_a_column_scene_and_the_horizon_is_exact_around_it) {
+BOOST_AUTO_TEST_CASE(v405_is_a_column_scene_and_the_horizon_is_exact_around_it, *skyband::test::needs_shared_data()) {
   const TriangleSoup soup = load("val3dity_building_v405.off");
   const Scene scene(soup);
   const ColumnScene& c = scene.column_scene();
@@ -252,7 +252,7 @@ BOOST_AUTO_TEST_CASE(v405_is_a_column_scene_and_the_horizon_is_exact_around_it) 
   }
 }
 
-BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_and_is_declined) {
+BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_and_is_declined, *skyband::test::needs_shared_data()) {
   // README: a valid (closed) val3dity solid whose faces are up to 3.6 mm off their planes. After
   // triangulation some wall triangles lean outward by ~1e-3 rad: they face down above the floor,
   // so the component is not a column solid (an overhang of a few millimetres, real in the data).
@@ -300,7 +300,7 @@ BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_and_is_decli
   }
 }
 
-BOOST_AUTO_TEST_CASE(city_files_are_not_column_scenes_at_street_level) {
+BOOST_AUTO_TEST_CASE(city_files_are_not_column_scenes_at_street_level, *skyband::test::needs_shared_data()) {
   // Component counts from the data README's independent check script: column solids + other
   // components = connected components. The highest
   // vertex of each file belongs to a non-column component, so max_other_z is the bbox top.
@@ -342,7 +342,7 @@ BOOST_AUTO_TEST_CASE(city_files_are_not_column_scenes_at_street_level) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(rotterdam_column_solids_alone_match_the_oracle_and_the_bands) {
+BOOST_AUTO_TEST_CASE(rotterdam_column_solids_alone_match_the_oracle_and_the_bands, *skyband::test::needs_shared_data()) {
   // The 11 column-solid components of the Rotterdam block (real LoD2 sheds: irregular footprints,
   // pitched roofs, coordinates ~1e5 m) taken alone form a column scene.
   const TriangleSoup all = load("rotterdam_delfshaven_blockA_lod2.obj");
@@ -372,7 +372,7 @@ BOOST_AUTO_TEST_CASE(rotterdam_column_solids_alone_match_the_oracle_and_the_band
   BOOST_TEST(inside >= 10u);
 }
 
-BOOST_AUTO_TEST_CASE(ingolstadt_column_solids_alone_floating_ones_are_declined) {
+BOOST_AUTO_TEST_CASE(ingolstadt_column_solids_alone_floating_ones_are_declined, *skyband::test::needs_shared_data()) {
   // The column-solid components of the Ingolstadt street (dormers, chimneys, installations and a
   // few whole bodies; floors from 413.6 to 426.4 m): most float above the street once the roofs
   // they stand on (other components) are removed, so the sky under them is open.

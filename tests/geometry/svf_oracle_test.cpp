@@ -19,7 +19,7 @@ using namespace skyband::oracle;
 
 namespace {
 
-// The accuracy the project asks of the default options (issue 2: "within 1e-3 of the oracle").
+// The accuracy the default options promise: within 1e-3 of the oracle.
 constexpr double kDefaultAccuracy = 1e-3;
 
 std::vector<double> core_svf(const Scene& scene, const std::vector<QueryPoint>& pts, const VisibilityOptions& opt,

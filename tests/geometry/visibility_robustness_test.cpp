@@ -11,6 +11,7 @@
 #include "geometry/sky_integral.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"
+#include "shared_data.h"
 
 namespace tt = boost::test_tools;
 namespace fs = std::filesystem;
@@ -41,7 +42,7 @@ gen::City small_city() {
 
 }  // namespace
 
-// Issue: "determinism across thread counts" — the cache is bit-identical for 1, 2 and 3 workers.
+// Determinism across thread counts: the cache is bit-identical for 1, 2 and 3 workers.
 BOOST_AUTO_TEST_CASE(bit_identical_across_thread_counts) {
   const gen::City city = small_city();
   const Scene scene(city.soup);
@@ -94,7 +95,7 @@ BOOST_AUTO_TEST_CASE(duplicate_triangles_change_nothing) {
 // 10.337 m, README of shared/data/buildings): a point on its roof sees the whole sky (SVF 1, the
 // roof hides nothing above itself), a point inside sees none (SVF 0 exactly: no leak through the
 // shared edges of 60 triangles), whatever the normal.
-BOOST_AUTO_TEST_CASE(real_closed_building_roof_and_inside) {
+BOOST_AUTO_TEST_CASE(real_closed_building_roof_and_inside, *skyband::test::needs_shared_data()) {
   const TriangleSoup soup = read_mesh(fs::path(SKYBAND_SHARED_DATA) / "buildings" / "val3dity_building_v405.off");
   const Scene scene(soup);
   // The centroid of a roof triangle lies on the roof, inside the footprint.
@@ -123,9 +124,9 @@ BOOST_AUTO_TEST_CASE(real_closed_building_roof_and_inside) {
 }
 
 // Every mesh of the shared corpora that loads is usable: SVF and sky exposure finite and in
-// [0, 1] at points around and inside it, never a crash (issue: "all of it must load or fail with
-// a clear message").
-BOOST_AUTO_TEST_CASE(degenerate_and_real_corpora_give_finite_results) {
+// [0, 1] at points around and inside it, never a crash (every file loads or fails with a clear
+// message).
+BOOST_AUTO_TEST_CASE(degenerate_and_real_corpora_give_finite_results, *skyband::test::needs_shared_data()) {
   for (const char* folder : {"degenerate", "buildings"}) {
     for (const auto& entry : fs::directory_iterator(fs::path(SKYBAND_SHARED_DATA) / folder)) {
       const std::string ext = entry.path().extension().string();

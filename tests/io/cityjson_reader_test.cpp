@@ -19,6 +19,7 @@
 #include "geometry/input_error.h"
 #include "geometry/mesh_defects.h"
 #include "io/cityjson_reader.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -219,7 +220,7 @@ const std::string kCubeShell = "[[[0,3,2,1]],[[4,5,6,7]],[[0,1,5,4]],[[1,2,6,5]]
 
 // ---- Shared real files -----------------------------------------------------------------------
 
-BOOST_AUTO_TEST_CASE(delft_counts_materials_and_vertices_match_an_independent_walk) {
+BOOST_AUTO_TEST_CASE(delft_counts_materials_and_vertices_match_an_independent_walk, *skyband::test::needs_shared_data()) {
   const fs::path p = shared("delft.city.json");
   TriangleSoup soup;
   CityModelReport r;
@@ -317,7 +318,7 @@ std::size_t open_ring_edges(const json& source, const std::string& id, std::size
   return static_cast<std::size_t>(std::count_if(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; }));
 }
 
-BOOST_AUTO_TEST_CASE(bag_solids_give_closed_meshes_at_every_lod) {
+BOOST_AUTO_TEST_CASE(bag_solids_give_closed_meshes_at_every_lod, *skyband::test::needs_shared_data()) {
   // Every 3D BAG BuildingPart Solid (v1: 3 parts, 2024 CityJSONSeq: 3 parts; LoD 1.2, 1.3 and
   // 2.2 each; 4 of the v1 LoD 2.2 surfaces have holes) is closed at ring level in the file (a
   // Python count made while writing this test: every ring edge used exactly twice, in opposite
@@ -355,7 +356,7 @@ BOOST_AUTO_TEST_CASE(bag_solids_give_closed_meshes_at_every_lod) {
   BOOST_TEST(solids == 18u);  // README: 3 + 3 parts × 3 LoDs
 }
 
-BOOST_AUTO_TEST_CASE(delft_building_solids_keep_the_files_open_edges_and_add_none) {
+BOOST_AUTO_TEST_CASE(delft_building_solids_keep_the_files_open_edges_and_add_none, *skyband::test::needs_shared_data()) {
   // The delft LoD 1 Solids (3dfier) are not closed in the file: their walls have T-junctions and
   // some shells have gaps (a Python check: every one of the 160 has ring edges used once, and
   // the worst one's vector area is 0.6 × its area). The reader must add no crack: the soup's open
@@ -374,7 +375,7 @@ BOOST_AUTO_TEST_CASE(delft_building_solids_keep_the_files_open_edges_and_add_non
   BOOST_TEST(open_total > 0u);    // the check above is not vacuous
 }
 
-BOOST_AUTO_TEST_CASE(bag_v1_default_reads_the_highest_lod_of_the_building_parts) {
+BOOST_AUTO_TEST_CASE(bag_v1_default_reads_the_highest_lod_of_the_building_parts, *skyband::test::needs_shared_data()) {
   const fs::path p = shared("3dbag_v1_sample_denhaag.city.json");
   TriangleSoup soup;
   CityModelReport r;
@@ -414,7 +415,7 @@ BOOST_AUTO_TEST_CASE(bag_v1_default_reads_the_highest_lod_of_the_building_parts)
   BOOST_TEST_MESSAGE("3D BAG v1 LoD 2.2 area " << w.area_m2 << " m2");
 }
 
-BOOST_AUTO_TEST_CASE(bag_v1_explicit_lod_selects_exactly_that_lod) {
+BOOST_AUTO_TEST_CASE(bag_v1_explicit_lod_selects_exactly_that_lod, *skyband::test::needs_shared_data()) {
   const fs::path p = shared("3dbag_v1_sample_denhaag.city.json");
   CityModelReport r12, r22, r0;
   const TriangleSoup s12 = read_cityjson(p, {.lod = "1.2"}, &r12);
@@ -449,7 +450,7 @@ BOOST_AUTO_TEST_CASE(bag_v1_explicit_lod_selects_exactly_that_lod) {
   BOOST_TEST(rk.lods_used == (std::map<std::string, std::size_t>{{"0", 3}, {"2.2", 3}}));
 }
 
-BOOST_AUTO_TEST_CASE(bag_2024_cityjsonseq_is_read_feature_by_feature) {
+BOOST_AUTO_TEST_CASE(bag_2024_cityjsonseq_is_read_feature_by_feature, *skyband::test::needs_shared_data()) {
   const fs::path p = shared("3dbag_v20240420_small.city.jsonl");
   TriangleSoup soup;
   CityModelReport r;
@@ -473,7 +474,7 @@ BOOST_AUTO_TEST_CASE(bag_2024_cityjsonseq_is_read_feature_by_feature) {
   BOOST_TEST(r12.triangles < r.triangles);
 }
 
-BOOST_AUTO_TEST_CASE(rotterdam_without_crs_and_with_degenerate_rings) {
+BOOST_AUTO_TEST_CASE(rotterdam_without_crs_and_with_degenerate_rings, *skyband::test::needs_shared_data()) {
   const fs::path p = shared("rotterdam_subset.city.json");
   TriangleSoup soup;
   CityModelReport r;
@@ -492,7 +493,7 @@ BOOST_AUTO_TEST_CASE(rotterdam_without_crs_and_with_degenerate_rings) {
   BOOST_TEST(has_note(r, "repeating their first vertex"));
 }
 
-BOOST_AUTO_TEST_CASE(shared_files_read_fast_enough) {
+BOOST_AUTO_TEST_CASE(shared_files_read_fast_enough, *skyband::test::needs_shared_data()) {
   // Not a benchmark: a guard against accidental quadratic behaviour. delft (1.46 MB, 36 k
   // surfaces) reads in ~100 ms on the development machine; 5 s leaves room for a loaded CI box.
   for (const char* name : {"delft.city.json", "3dbag_v1_sample_denhaag.city.json", "3dbag_v20240420_small.city.jsonl",
@@ -726,7 +727,7 @@ BOOST_AUTO_TEST_CASE(crs_forms_are_kept_and_epsg_codes_parsed) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(cityjsonseq_content_in_a_json_file_is_recognised) {
+BOOST_AUTO_TEST_CASE(cityjsonseq_content_in_a_json_file_is_recognised, *skyband::test::needs_shared_data()) {
   // The shared .jsonl's bytes under a .json name (a temp file; the shared file itself is untouched).
   std::ifstream in(shared("3dbag_v20240420_small.city.jsonl"), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -12,6 +12,7 @@
 #include "geometry/input_error.h"
 #include "io/epw_reader.h"
 #include "lighting/weather_series.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -125,7 +126,7 @@ double annual_sum_kWh_m2(const WeatherSeries& s, double WeatherRecord::*field) {
 // ---------------------------------------------------------------------------------------------
 // The shared real files.
 
-BOOST_AUTO_TEST_CASE(shared_files_read_with_their_locations_and_annual_sums) {
+BOOST_AUTO_TEST_CASE(shared_files_read_with_their_locations_and_annual_sums, *skyband::test::needs_shared_data()) {
   struct Expected {
     fs::path file;
     const char* name;
@@ -175,7 +176,7 @@ BOOST_AUTO_TEST_CASE(shared_files_read_with_their_locations_and_annual_sums) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(chicago_records_hold_the_fields_of_their_lines) {
+BOOST_AUTO_TEST_CASE(chicago_records_hold_the_fields_of_their_lines, *skyband::test::needs_shared_data()) {
   const WeatherSeries s = read_epw(kChicago);
   // Line 9: "1986,1,1,1,0,…,-12.2,-16.1,73,…,999.000,999.0,99.0" — dew point −16.1, albedo 999 (missing).
   const WeatherRecord& first = s.records.front();
@@ -499,7 +500,7 @@ BOOST_AUTO_TEST_CASE(in_period_is_inclusive_and_wraps_over_new_year) {
   BOOST_TEST(!in_period({11, 30}, {12, 1}, {2, 28}));
 }
 
-BOOST_AUTO_TEST_CASE(select_period_keeps_the_days_of_the_period_in_file_order) {
+BOOST_AUTO_TEST_CASE(select_period_keeps_the_days_of_the_period_in_file_order, *skyband::test::needs_shared_data()) {
   const WeatherSeries s = read_epw(kChicago);
   // Winter, wrapping over the new year: December 31 + January 31 + February 28 days.
   const WeatherSeries winter = select_period(s, parse_month_day("12-01", "--from"), parse_month_day("02-28", "--to"));

@@ -15,6 +15,7 @@
 
 #include "geometry/input_error.h"
 #include "io/mesh_reader.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -74,7 +75,7 @@ struct Expected {
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(every_shared_file_loads_or_fails_cleanly) {
+BOOST_AUTO_TEST_CASE(every_shared_file_loads_or_fails_cleanly, *skyband::test::needs_shared_data()) {
   // README numbers. Triangle-only files: triangles = faces (no face lost); polygon files: the
   // README's "triangles after ear-clipping".
   const std::map<std::string, Expected> loads{
@@ -147,7 +148,7 @@ BOOST_AUTO_TEST_CASE(every_shared_file_loads_or_fails_cleanly) {
   BOOST_TEST(seen == loads.size() + rejects.size());  // every file has an expectation
 }
 
-BOOST_AUTO_TEST_CASE(stl_welding_matches_readme_vertex_counts) {
+BOOST_AUTO_TEST_CASE(stl_welding_matches_readme_vertex_counts, *skyband::test::needs_shared_data()) {
   // README: "vertices counted after merging identical coordinates": 146 and 1042.
   MeshReadReport r;
   read_mesh(kDegenerate / "assimp_sphereWithHole.stl", &r);
@@ -159,7 +160,7 @@ BOOST_AUTO_TEST_CASE(stl_welding_matches_readme_vertex_counts) {
   BOOST_TEST(contains(r.summary(), "welded"));
 }
 
-BOOST_AUTO_TEST_CASE(street_file_loses_no_face) {
+BOOST_AUTO_TEST_CASE(street_file_loses_no_face, *skyband::test::needs_shared_data()) {
   // README: 69590 vertices, 150078 faces; OpenMesh 9 keeps only 149335 (743 lost). Defect
   // counts from the README's check-script findings (the file has no duplicate positions).
   MeshReadReport r;
@@ -177,7 +178,7 @@ BOOST_AUTO_TEST_CASE(street_file_loses_no_face) {
   BOOST_TEST(contains(r.reader, "skyband polygon soup"));
 }
 
-BOOST_AUTO_TEST_CASE(large_coordinates_are_kept_verbatim) {
+BOOST_AUTO_TEST_CASE(large_coordinates_are_kept_verbatim, *skyband::test::needs_shared_data()) {
   // First `v` line of the building file: "v 678045.908 5403933.387 429.201". The compiler's
   // correctly rounded literals are the independent reference; OpenMesh 9 would give 678045.9375.
   MeshReadReport r;
@@ -188,7 +189,7 @@ BOOST_AUTO_TEST_CASE(large_coordinates_are_kept_verbatim) {
   BOOST_TEST(contains(r.reader, "32-bit floats"));
 }
 
-BOOST_AUTO_TEST_CASE(concave_keyhole_polygon_area_matches_shoelace) {
+BOOST_AUTO_TEST_CASE(concave_keyhole_polygon_area_matches_shoelace, *skyband::test::needs_shared_data()) {
   // assimp_concave_polygon.obj: one 66-vertex ring in the plane x = -1.146. Independent area:
   // shoelace over the ring in (y, z), read straight from the file's text (the bridge's two
   // traversals cancel). README: 0.24550; a fan would give 3.217 (unsigned).
@@ -391,7 +392,7 @@ BOOST_AUTO_TEST_CASE(every_error_path_names_file_line_and_value) {
   BOOST_TEST(contains(error_of(kMine), "unknown mesh file extension"));  // a folder, no extension
 }
 
-BOOST_AUTO_TEST_CASE(truncated_files_load_or_fail_cleanly) {
+BOOST_AUTO_TEST_CASE(truncated_files_load_or_fail_cleanly, *skyband::test::needs_shared_data()) {
   // Every prefix (in steps of 5 bytes) of small files of each format must either load or throw
   // InputError — never crash, hang or throw anything else. Also a PLY whose count lies.
   const fs::path dir = temp_dir();
@@ -433,11 +434,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-// The mesh files fuzzing found (../shared/data/fuzz-found/README.md): each took seconds and
-// gigabytes, or read uninitialised memory, and loaded "successfully". Now each loads or fails
+// The mesh files fuzzing found (../shared/data/fuzz-found/README.md): each can cost a naive
+// reader seconds and gigabytes, or make it read uninitialised memory. Each loads or fails
 // with an InputError at once (< 2 s expected; 10 s asserted, to catch a hang on a loaded machine).
 // Expected counts are read off each file's bytes (its header and face lines; see the comments).
-BOOST_AUTO_TEST_CASE(fuzz_found_mesh_files_load_or_fail_at_once) {
+BOOST_AUTO_TEST_CASE(fuzz_found_mesh_files_load_or_fail_at_once, *skyband::test::needs_shared_data()) {
   struct Case {
     std::string file;
     std::size_t vertices, faces, triangles;  // 0 faces: must be rejected with `message`
@@ -540,7 +541,7 @@ BOOST_AUTO_TEST_CASE(nul_bytes_and_control_characters_in_messages) {
 // model (its README: CityJSON 2.0, 160 buildings plus terrain, roads, water and vegetation)
 // gives the 36,271 triangles an independent walk over its surfaces counts (cityjson_reader_test),
 // with the object types as material names for the terrain classes.
-BOOST_AUTO_TEST_CASE(cityjson_through_read_mesh) {
+BOOST_AUTO_TEST_CASE(cityjson_through_read_mesh, *skyband::test::needs_shared_data()) {
   MeshReadReport r;
   const TriangleSoup soup = read_mesh(fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "delft.city.json", &r);
   BOOST_TEST(soup.triangle_count() == 36271u);

@@ -12,6 +12,7 @@
 #include "geometry/input_error.h"
 #include "io/scene_file.h"
 #include "io/toml_ascii.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -186,7 +187,7 @@ std::string slurp(const fs::path& p) {
 // The scene files fuzzing found (../shared/data/fuzz-found/README.md): an InputError naming the
 // file, position and key, quickly (10 s asserted loosely against a hang), never toml++'s
 // undefined behaviour (it never sees a non-ASCII byte: io/toml_ascii.h) nor a filesystem_error.
-BOOST_AUTO_TEST_CASE(fuzz_found_scene_files_fail_cleanly) {
+BOOST_AUTO_TEST_CASE(fuzz_found_scene_files_fail_cleanly, *skyband::test::needs_shared_data()) {
   struct Case {
     std::string file;
     std::vector<std::string> parts;

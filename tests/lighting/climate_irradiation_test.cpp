@@ -20,6 +20,7 @@
 #include "lighting/perez_sky.h"
 #include "lighting/weather_hours.h"
 #include "lighting/support/perez_transposition.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -47,7 +48,7 @@ void add_quad(TriangleSoup& s, const Vec3& a, const Vec3& b, const Vec3& c, cons
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(an_open_horizontal_face_receives_the_files_diffuse_and_direct) {
+BOOST_AUTO_TEST_CASE(an_open_horizontal_face_receives_the_files_diffuse_and_direct, *skyband::test::needs_shared_data()) {
   // Sky: Σ Δt·DHI (the calibration makes it so; the factor itself measures the grid's
   // interpolation error and must be close to 1). Sun: Σ Δt·DNI·cos z over the intervals with the
   // sun up, summed here from the same hours. Ground: none (a face looking up sees no ground).
@@ -75,7 +76,7 @@ BOOST_AUTO_TEST_CASE(an_open_horizontal_face_receives_the_files_diffuse_and_dire
   BOOST_TEST(ghi / 1000 == 1406.6, boost::test_tools::tolerance(1e-3));
 }
 
-BOOST_AUTO_TEST_CASE(tilted_planes_against_the_perez_1990_transposition) {
+BOOST_AUTO_TEST_CASE(tilted_planes_against_the_perez_1990_transposition, *skyband::test::needs_shared_data()) {
   // Unobstructed planes facing N/E/S/W at 30°, 60° and 90° and horizontal: the annual sums against
   // pvlib's Perez 1990 (test support, validated against pvlib's own test values) plus the
   // isotropic ground ρ·GHI·(1 − cos β)/2. The two sky models differ (Perez 1993 distribution
@@ -122,7 +123,7 @@ BOOST_AUTO_TEST_CASE(tilted_planes_against_the_perez_1990_transposition) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(ground_view_of_a_wall_facing_a_long_wall) {
+BOOST_AUTO_TEST_CASE(ground_view_of_a_wall_facing_a_long_wall, *skyband::test::needs_shared_data()) {
   // A face at height h looking horizontally at a parallel wall at distance d, 2 km long and taller
   // than h: it sees the ground strip between them, view factor ½(1 − h/√(h² + d²)) (the 2D
   // cosine law for an infinite strip), the rest of its lower hemisphere being the opposite wall.
@@ -156,7 +157,7 @@ BOOST_AUTO_TEST_CASE(ground_view_of_a_wall_facing_a_long_wall) {
   BOOST_TEST(std::abs(run.points[0].svf - 0.5 * (1 - std::sin(psi))) < 1e-4);
 }
 
-BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_threads) {
+BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_threads, *skyband::test::needs_shared_data()) {
   TriangleSoup soup;
   add_quad(soup, Vec3(-20, 10, 0), Vec3(20, 10, 0), Vec3(20, 10, 15), Vec3(-20, 10, 15));
   add_quad(soup, Vec3(5, -20, 0), Vec3(5, 20, 0), Vec3(5, 20, 8), Vec3(5, -20, 8));
@@ -178,7 +179,7 @@ BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_threads) {
 // --sun-at: the sun at the end of an hour (fraction 1) is the sun at the start of the next one
 // (fraction 0) — the same instant, also across midnight (hour 24's end is the next day's 00:00)
 // wherever both records are of the same year; the default, the middle, is neither. Out-of-range fractions are errors naming the flag.
-BOOST_AUTO_TEST_CASE(sun_placed_within_the_interval) {
+BOOST_AUTO_TEST_CASE(sun_placed_within_the_interval, *skyband::test::needs_shared_data()) {
   const WeatherSeries series = read_epw(weather("USA_IL_Chicago-OHare.725300_TMY3.epw"));
   WeatherHoursOptions start, end;
   start.sun_fraction = 0.0;

@@ -14,6 +14,7 @@
 #include "lighting/perez_sky.h"
 #include "lighting/sun_position.h"
 #include "lighting/support/perez_transposition.h"
+#include "shared_data.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;
@@ -539,7 +540,7 @@ BOOST_AUTO_TEST_CASE(plane_integral_of_a_uniform_sky) {
     }
 }
 
-BOOST_AUTO_TEST_CASE(tilted_planes_against_perez1990_pvlib_inputs) {
+BOOST_AUTO_TEST_CASE(tilted_planes_against_perez1990_pvlib_inputs, *skyband::test::needs_shared_data()) {
   const nlohmann::json j = load_pvlib_reference();
   const auto& in = j["inputs"];
   // pvlib fixture, hours 1–3 (hour 0 is night), tilt 40° facing south; and the Goodwin Creek

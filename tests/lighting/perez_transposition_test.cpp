@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lighting/support/perez_transposition.h"
+#include "shared_data.h"
 
 namespace tt = boost::test_tools;
 using skyband::test::perez1990_aoi_projection;
@@ -29,7 +30,7 @@ double num(const nlohmann::json& v) { return v.is_null() ? std::nan("") : v.get<
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(aoi_projection_cases) {
+BOOST_AUTO_TEST_CASE(aoi_projection_cases, *skyband::test::needs_shared_data()) {
   // "aoi_cases_tilt_az_zen_az__aoi_proj": [tilt, surface az, zenith, sun az, aoi°, projection];
   // pvlib prints them to 7 decimals, truncated (−0.4924038 for −0.49240388): one unit of the
   // last printed digit.
@@ -41,7 +42,7 @@ BOOST_AUTO_TEST_CASE(aoi_projection_cases) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(poa_components_exact) {
+BOOST_AUTO_TEST_CASE(poa_components_exact, *skyband::test::needs_shared_data()) {
   // test_poa_components_diffuse_components_perez: tilt 40° facing south, apparent zenith and
   // azimuth, relative air mass, full DNI. pvlib compares with assert_frame_equal (rtol 1e-5);
   // the values are printed to 6–8 decimals, so 1e-7 relative (absolute 1e-6 at 0).
@@ -62,7 +63,7 @@ BOOST_AUTO_TEST_CASE(poa_components_exact) {
   BOOST_TEST(s.sky_diffuse == 109.084332, tt::tolerance(1e-7));
 }
 
-BOOST_AUTO_TEST_CASE(perez_test_with_nan_dni_two_decimals) {
+BOOST_AUTO_TEST_CASE(perez_test_with_nan_dni_two_decimals, *skyband::test::needs_shared_data()) {
   // test_perez / test_perez_components: hour 2 has DNI set to NaN in pvlib (skipped here), the
   // others are compared with check_less_precise=2 (two decimals): tolerance 0.005 absolute.
   const auto j = reference();
@@ -78,7 +79,7 @@ BOOST_AUTO_TEST_CASE(perez_test_with_nan_dni_two_decimals) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(negative_horizon_case) {
+BOOST_AUTO_TEST_CASE(negative_horizon_case, *skyband::test::needs_shared_data()) {
   // test_perez_negative_horizon (Goodwin Creek, tilt 34° south): the horizon term is negative in
   // four of five hours and kept signed, so the sky diffuse falls below the isotropic part. pvlib
   // compares to 2 decimals. The totals are printed to 6 decimals and agree here to < 1e-6; the

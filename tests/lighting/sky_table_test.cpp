@@ -49,7 +49,7 @@ double worst_table_error(const Atmosphere& atm, const SkyTable& table, Scatterin
 
 // Interpolation error of the table against Atmosphere::sky_radiance (the direct integral) over
 // 400 random directions per case, sun altitudes 4°, 17°, 60° (the paper's figures), single and
-// multiple scattering. Bound 0.5% relative (the task's requirement), everywhere including the
+// multiple scattering. Bound 0.5% relative (the sky table's accuracy target), everywhere including the
 // aureole: the phase functions are applied exactly at look-up, so no directions near the sun
 // need to be excluded. Measured worst (printed): 0.31% (4°, single, near the horizon), ≤ 0.08%
 // otherwise.

@@ -14,6 +14,7 @@
 #include "io/epw_reader.h"
 #include "lighting/weather_series.h"
 #include "lighting/weather_timing.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -179,7 +180,7 @@ BOOST_AUTO_TEST_CASE(polar_night_and_partial_days_are_skipped) {
 // cos z-weighted 11.87 (centred); Heino 11.63 vs 12.59 (≈58 min early); Cloncurry 12.10 vs 12.63
 // (≈32 min early).
 
-BOOST_AUTO_TEST_CASE(shared_files_are_classified_as_the_readme_says) {
+BOOST_AUTO_TEST_CASE(shared_files_are_classified_as_the_readme_says, *skyband::test::needs_shared_data()) {
   struct Expected {
     fs::path file;
     double radiation_mean_hour, sun_mean_hour;  // README
