@@ -46,11 +46,22 @@ BOOST_AUTO_TEST_CASE(closed_box_inside_and_on_top) {
     VisibilityOptions opt;
     opt.bands = bands;
     for (const Vec3& n : {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0.3, -0.5, 0.8)}) {
-      BOOST_TEST(svf_at(scene, Vec3(1.3, 1.1, 0.7), n, opt) == 0.0);
-      BOOST_TEST(svf_at(scene, Vec3(2, 1.5, 1.0), n, opt) == 0.0);
-      // A point on a vertex, an edge, the centre of the box.
-      BOOST_TEST(svf_at(scene, Vec3(2, 1.5, 1), n, opt) == 0.0);
+      BOOST_TEST(svf_at(scene, Vec3(1.3, 1.1, 0.7), n, opt) == 0.0);  // a generic interior point
+      BOOST_TEST(svf_at(scene, Vec3(2, 1.5, 1.0), n, opt) == 0.0);    // the centre of the box
     }
+    // On a vertex and on an edge of the box, facing into it: evaluated 1 µm inside
+    // (surface_offset_m), where every sample plane passes through the box's corner or along its
+    // edge — still no gap between the faces meeting there.
+    BOOST_TEST(svf_at(scene, Vec3(0, 0, 0), Vec3(1, 1, 1), opt) == 0.0);  // bottom vertex
+    BOOST_TEST(svf_at(scene, Vec3(2, 0, 1), Vec3(0, 1, 0), opt) == 0.0);  // on the face y = 0
+    BOOST_TEST(svf_at(scene, Vec3(4, 3, 1), Vec3(-1, -1, 0), opt) == 0.0);  // vertical edge
+    // The same vertex and edge facing out of the box: the box then lies wholly behind the face's
+    // plane, so the point sees the open sky of its tilt, (1 + cos θ)/2 (method.md §8):
+    // cos θ = 1/√3 at the top vertex facing (1, 1, 1), 0 on the vertical edge facing (1, 1, 0).
+    // Only float storage of interval ends and band edges rounds, as in open_sky_tilted_faces.
+    BOOST_TEST(svf_at(scene, Vec3(4, 3, 2), Vec3(1, 1, 1), opt) == 0.5 * (1 + 1 / std::sqrt(3.0)),
+               tt::tolerance(1e-6));
+    BOOST_TEST(svf_at(scene, Vec3(4, 3, 1), Vec3(1, 1, 0), opt) == 0.5, tt::tolerance(1e-6));
     BOOST_TEST(svf_at(scene, Vec3(1.3, 1.1, 2.0), Vec3(0, 0, 1), opt) == 1.0, tt::tolerance(1e-12));
     BOOST_TEST(svf_at(scene, Vec3(2.0, 1.5, 2.0), Vec3(0, 0, 1), opt) == 1.0, tt::tolerance(1e-12));
     BOOST_TEST(svf_at(scene, Vec3(4.0, 3.0, 2.0), Vec3(0, 0, 1), opt) == 1.0, tt::tolerance(1e-12));
