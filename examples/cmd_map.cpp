@@ -43,6 +43,7 @@ namespace skyband::cli {
 namespace {
 
 constexpr float kNoData = -9999.0f;
+constexpr std::size_t kMaxDsmPixels = 4'000'000;
 
 struct MapArgs {
   std::vector<std::string> meshes;
@@ -152,7 +153,9 @@ MapGrid grid_from_model(const MapArgs& a, std::unique_ptr<Scene>& scene) {
 }
 
 MapGrid grid_from_dsm(const MapArgs& a, std::unique_ptr<Scene>& scene) {
-  const GeoRaster dsm = read_geo_raster(a.dsm);
+  // The pixel columns cost ~4.5 kB a pixel (~7 triangles with their BVH and classification, on
+  // a rough DSM): 4 million pixels (2000²) fill ~18 GB. Larger rasters are refused up front.
+  const GeoRaster dsm = read_geo_raster(a.dsm, kMaxDsmPixels);
   HeightField f;
   f.columns = dsm.columns;
   f.rows = dsm.rows;
