@@ -447,6 +447,9 @@ void FacadeBuilder::add_face_points(Scratch& sc, std::uint32_t t, const FaceGrid
         if (std::abs(n_out.z()) <= kWallMaxNormalZ) c = FaceClass::wall;
         else if (n_out.z() > 0) c = FaceClass::roof;
         else { ++out.facing_down; continue; }
+      } else if (c == FaceClass::roof && n_out.z() < 0) {
+        ++out.facing_down;  // a roof surface that the parity finds facing down: not trusted
+        continue;
       }
       if (covered(sc, p, n_out, t, g, centre_uv)) { ++out.covered; continue; }
       const Vec3 x = p + o_.offset_m * n_out;

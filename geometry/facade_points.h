@@ -15,7 +15,8 @@
 //   - any other name (Building, BuildingPart, an OBJ `usemtl`, no material) → by the outward
 //     normal: a wall when it is within 30° of horizontal (|n_z| ≤ ½), a roof when it points up
 //     more steeply (n_z > ½, Honeybee's default roof angle of 60° from the zenith), else
-//     (floors, undersides) no points.
+//     (floors, undersides) no points. A semantic roof whose outward normal (below) points
+//     down gets no point either: roofs face the sky, so the shell there is defective.
 //
 // The grid. Each triangle carries a square grid in its own plane: u horizontal along the face,
 // v up the face (v = z on a vertical wall), both measured from the world origin, cell centres
@@ -100,7 +101,8 @@ struct FacadePoints {
   std::size_t faces = 0;          // triangles taking part (wall/roof candidates, non-zero area)
   std::size_t zero_area = 0;      // candidate triangles of zero area: no points
   std::size_t centres = 0;        // cell centres inside the faces
-  std::size_t facing_down = 0;    // by-normal faces whose outward normal points down (floors)
+  std::size_t facing_down = 0;    // outward normal down: floors, undersides (by the normal), or a
+                                  // semantic roof surface found facing down (a defective shell)
   std::size_t enclosed = 0;       // enclosed on both sides by the own group
   std::size_t covered = 0;        // a surface in front within D + 1 cm (or just behind)
   std::size_t underground = 0;    // offset point under a terrain triangle

@@ -310,7 +310,8 @@ BOOST_AUTO_TEST_CASE(facades_errors) {
 }
 
 // The same CSV whatever the thread count (faces in chunks, joined in order), on the shared
-// Rotterdam CityJSON subset.
+// Rotterdam CityJSON subset with its roofs: every roof point (a RoofSurface) faces up, every
+// wall point (a WallSurface) is horizontal.
 BOOST_AUTO_TEST_CASE(facades_do_not_depend_on_threads) {
   const fs::path d = skyband::test::test_folder("points_cli_facades_threads");
   const fs::path model = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "rotterdam_subset.city.json";
@@ -320,4 +321,22 @@ BOOST_AUTO_TEST_CASE(facades_do_not_depend_on_threads) {
     BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   }
   BOOST_TEST(slurp(d / "t1.csv") == slurp(d / "t2.csv"));
+  std::istringstream in(slurp(d / "t1.csv"));
+  std::string line;
+  std::getline(in, line);
+  std::size_t roofs = 0, walls = 0;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> c = split_csv_line(line);
+    BOOST_TEST_REQUIRE(c.size() == 12u, line);
+    const double nz = std::stod(c[5]);
+    if (c[7] == "roof") {
+      ++roofs;
+      BOOST_TEST((c[8] == "RoofSurface" && nz > 0), line);
+    } else {
+      ++walls;
+      BOOST_TEST((c[7] == "wall" && c[8] == "WallSurface" && nz == 0), line);
+    }
+  }
+  BOOST_TEST(roofs > 0u);
+  BOOST_TEST(walls > 0u);
 }
