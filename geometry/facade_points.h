@@ -42,7 +42,7 @@
 // escapes, sideways meets a wall); on a tie (a lone surface) the winding is taken (up for a
 // roof) and the point counted. Every direction degenerate: no point, counted.
 //
-// Dropped and counted (exact predicates throughout):
+// Dropped and counted (exact predicates for every decision):
 //   - covered: another surface meets the segment from 1 mm behind p to D + 1 cm in front of it
 //     (a coincident or adjacent wall of another building, terrain above the point, an acute
 //     concave corner). Triangles of the own group exactly coplanar with the face (the rest of its
@@ -57,7 +57,8 @@
 //     floorless or roofless one does), the point's own face counting as part of every group (a
 //     neighbour whose party wall is modelled only here is closed by it); or the first surface
 //     straight above the offset point faces up, away from it, by the outward test of that
-//     surface's own group at the hit (under a roof seen from inside).
+//     surface's own group at the hit (under a roof seen from inside; the surface is found by
+//     the scene's floating-point closest-hit query, the side by the exact parity test).
 // Limitation: without objects, buildings overlapping one another within one connected
 // component are seen through the parity of the component (their symmetric difference); the
 // roof-above test catches such a point under the neighbour's roof, not every case. City
