@@ -396,6 +396,9 @@ bool FacadeBuilder::inside_building(Scratch& sc, const Vec3& x, const FaceFrame&
         const std::uint32_t group = groups_.of_triangle[t];
         if (degenerate || group == kNoGroup || zero_area_[t]) return;
         const Vec3 &a = corner(t, 0), &b = corner(t, 1), &cc = corner(t, 2);
+        // The rays lie in the plane z = x_z exactly (their directions have z = 0): a triangle
+        // wholly above or below it cannot meet them (exact comparisons).
+        if (std::min({a.z(), b.z(), cc.z()}) > x.z() || std::max({a.z(), b.z(), cc.z()}) < x.z()) return;
         std::uint8_t bits = 0;
         for (int side = 0; side < 2; ++side) {
           const SegmentCrossing k = segment_triangle_crossing(x, side == 0 ? plus : minus, a, b, cc);

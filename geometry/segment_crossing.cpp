@@ -55,6 +55,10 @@ bool coplanar_segment_meets(const Vec3& p, const Vec3& q, const Vec3& a, const V
 bool triangle_is_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) { return projection_axis(a, b, c) < 0; }
 
 SegmentCrossing segment_triangle_crossing(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Boxes apart (exact comparisons: the segment lies in the box of its endpoints): no contact.
+  for (int k = 0; k < 3; ++k)
+    if (std::max(p[k], q[k]) < std::min({a[k], b[k], c[k]}) || std::min(p[k], q[k]) > std::max({a[k], b[k], c[k]}))
+      return SegmentCrossing::none;
   const int sp = exact_orientation(a, b, c, p), sq = exact_orientation(a, b, c, q);
   if (sp == sq && sp != 0) return SegmentCrossing::none;
   if (sp == 0 || sq == 0) {
