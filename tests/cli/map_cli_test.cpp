@@ -16,6 +16,7 @@
 #include "cli/support/cli_runner.h"
 #include "io/geo_raster.h"
 #include "io/png_writer.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using skyband::test::run_skyband;
@@ -141,7 +142,7 @@ BOOST_AUTO_TEST_CASE(city_model_map_is_the_ground_grid_with_nodata_under_buildin
   BOOST_TEST((std::array<int, 3>{png.rgb[k], png.rgb[k + 1], png.rgb[k + 2]} == std::array<int, 3>{200, 200, 200}));
 }
 
-BOOST_AUTO_TEST_CASE(city_model_crs_goes_into_the_geotiff) {
+BOOST_AUTO_TEST_CASE(city_model_crs_goes_into_the_geotiff, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("map_cli_crs");
   const fs::path delft = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "delft.city.json";
   auto r = run_skyband("map --mesh " + q(delft) + " --spacing 100 --out " + q(d / "m.tif") + " --quiet");

@@ -19,6 +19,7 @@
 #include "cli/support/cli_runner.h"
 #include "geometry/scene.h"
 #include "io/mesh_reader.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using skyband::test::run_skyband;
@@ -257,7 +258,7 @@ BOOST_AUTO_TEST_CASE(facades_of_a_cube) {
 // building (independent parity, per building even where skyband only sees components), walls' normals within 30° of horizontal (by the normal, OBJ) or
 // exactly horizontal (the CityJSON walls are vertical), and the CSV's row count the
 // one printed.
-BOOST_AUTO_TEST_CASE(facades_of_real_city_models) {
+BOOST_AUTO_TEST_CASE(facades_of_real_city_models, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("points_cli_facades_real");
   const fs::path shared(SKYBAND_SHARED_DATA);
   for (const fs::path& model : {shared / "buildings" / "rotterdam_delfshaven_blockA_lod2.obj", shared / "cityjson" / "delft.city.json",
@@ -312,7 +313,7 @@ BOOST_AUTO_TEST_CASE(facades_errors) {
 // The same CSV whatever the thread count (faces in chunks, joined in order), on the shared
 // Rotterdam CityJSON subset with its roofs: every roof point (a RoofSurface) faces up, every
 // wall point (a WallSurface) is horizontal.
-BOOST_AUTO_TEST_CASE(facades_do_not_depend_on_threads) {
+BOOST_AUTO_TEST_CASE(facades_do_not_depend_on_threads, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("points_cli_facades_threads");
   const fs::path model = fs::path(SKYBAND_SHARED_DATA) / "cityjson" / "rotterdam_subset.city.json";
   for (const char* t : {"1", "2"}) {

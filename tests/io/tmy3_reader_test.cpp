@@ -18,6 +18,7 @@
 #include "geometry/input_error.h"
 #include "io/epw_reader.h"
 #include "io/tmy3_reader.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
@@ -81,7 +82,7 @@ const std::string kSite = "725300,\"CHICAGO OHARE INTL AP\",IL,-6.0,41.983,-87.9
 
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series) {
+BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series, *skyband::test::needs_shared_data()) {
   std::ifstream in(kChicago);
   std::string line, csv = "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n" + std::string(kHeader);
   for (int k = 0; std::getline(in, line); ++k)
