@@ -84,7 +84,39 @@ struct Groups {
   std::vector<Aabb> box;
   double max_diagonal_m = 0;
   bool objects = false;
+  // The groups whose xy box meets each cell of a grid over the groups' boxes (cells_x ×
+  // cells_y, cell_m square, from origin): the candidates of the inside test.
+  double origin[2] = {0, 0}, cell_m = 1;
+  std::size_t cells_x = 0, cells_y = 0;
+  std::vector<std::vector<std::uint32_t>> cell_groups;
+  const std::vector<std::uint32_t>* groups_near(const Vec3& x) const {
+    if (cells_x == 0) return nullptr;
+    const double i = std::floor((x.x() - origin[0]) / cell_m), j = std::floor((x.y() - origin[1]) / cell_m);
+    if (!(i >= 0 && j >= 0 && i < double(cells_x) && j < double(cells_y))) return nullptr;
+    return &cell_groups[std::size_t(j) * cells_x + std::size_t(i)];
+  }
 };
+
+// Fills the grid of `g` (about 64 × 64 cells over the union of the boxes).
+void index_group_boxes(Groups& g) {
+  Aabb all;
+  for (const Aabb& b : g.box)
+    if (!b.empty()) all.extend(b);
+  if (all.empty()) return;
+  const double w = all.hi.x() - all.lo.x(), h = all.hi.y() - all.lo.y();
+  g.cell_m = std::max({w, h, 1.0}) / 64;
+  g.origin[0] = all.lo.x(), g.origin[1] = all.lo.y();
+  g.cells_x = std::size_t(w / g.cell_m) + 1, g.cells_y = std::size_t(h / g.cell_m) + 1;
+  g.cell_groups.assign(g.cells_x * g.cells_y, {});
+  for (std::uint32_t k = 0; k < g.box.size(); ++k) {
+    const Aabb& b = g.box[k];
+    if (b.empty()) continue;
+    const auto lo_i = std::size_t((b.lo.x() - g.origin[0]) / g.cell_m), hi_i = std::min(g.cells_x - 1, std::size_t((b.hi.x() - g.origin[0]) / g.cell_m));
+    const auto lo_j = std::size_t((b.lo.y() - g.origin[1]) / g.cell_m), hi_j = std::min(g.cells_y - 1, std::size_t((b.hi.y() - g.origin[1]) / g.cell_m));
+    for (std::size_t j = lo_j; j <= hi_j; ++j)
+      for (std::size_t i = lo_i; i <= hi_i; ++i) g.cell_groups[j * g.cells_x + i].push_back(k);
+  }
+}
 
 Groups make_groups(const TriangleSoup& soup, const std::vector<FaceClass>& cls) {
   Groups g;
@@ -122,6 +154,7 @@ Groups make_groups(const TriangleSoup& soup, const std::vector<FaceClass>& cls) 
   }
   for (const Aabb& b : g.box)
     if (!b.empty()) g.max_diagonal_m = std::max(g.max_diagonal_m, (b.hi - b.lo).norm());
+  index_group_boxes(g);
   return g;
 }
 
@@ -380,7 +413,17 @@ bool FacadeBuilder::under_a_roof_from_inside(Scratch& sc, const Vec3& x) {
 // building only) holds the points in front of it. Rays touching an edge are turned by a fixed
 // angle and tried again; if every turn is degenerate the point counts as outside.
 bool FacadeBuilder::inside_building(Scratch& sc, const Vec3& x, const FaceFrame& f, std::uint32_t face) {
-  const double reach_m = groups_.max_diagonal_m + 1.0;
+  // Only groups whose box holds x can hold it; the rays need reach only out of those boxes.
+  const std::vector<std::uint32_t>* near = groups_.groups_near(x);
+  if (!near) return false;
+  double reach_m = 0;
+  for (const std::uint32_t g : *near) {
+    const Aabb& b = groups_.box[g];
+    if ((x.array() >= b.lo.array()).all() && (x.array() <= b.hi.array()).all())
+      reach_m = std::max(reach_m, (x - b.lo).cwiseAbs().cwiseMax((b.hi - x).cwiseAbs()).norm());
+  }
+  if (reach_m == 0) return false;
+  reach_m += 1.0;
   constexpr std::array<double, 5> kTurns_rad{0, 0.1173, 0.3391, 0.5927, 0.8219};
   for (const double turn : kTurns_rad) {
     const double c = std::cos(turn), s = std::sin(turn);
