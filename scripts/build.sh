@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Configures and builds skyband (Release) into ./build. Usage: scripts/build.sh [extra cmake args]
+# Configures and builds skyband (Release) into ./build (or $SKYBAND_BUILD_DIR).
+# Usage: scripts/build.sh [extra cmake args] — applied to an existing build folder too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build}
@@ -7,5 +8,8 @@ GEN=()
 command -v ninja >/dev/null && GEN=(-G Ninja)
 if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
   cmake -S . -B "$BUILD_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
+elif [ "$#" -gt 0 ]; then
+  # An existing cache keeps its generator and build type; the extra arguments are applied to it.
+  cmake -S . -B "$BUILD_DIR" "$@"
 fi
 cmake --build "$BUILD_DIR" -j "$(nproc)"
