@@ -3,7 +3,9 @@
 // that decides almost every case, with an exact fallback (CGAL, in exact_sign.cpp, so no CGAL
 // header leaks from here):
 //   exact_dot_sign     — sign of m·d: which side of a sample plane (normal m, through the
-//                        calculation point) a vertex (offset d) lies on;
+//                        calculation point) a vertex (offset d) lies on; exact for the doubles
+//                        given, i.e. for the rounded offset d = fl(V − P) the caller forms once
+//                        per vertex (docs/robustness.md);
 //   exact_orientation  — sign of the orientation of four points: whether a triangle's plane
 //                        contains the calculation point (the triangle is then seen edge-on).
 #include <cmath>
