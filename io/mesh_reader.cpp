@@ -201,6 +201,8 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
   }
   out.polygon_material = soup.polygon_material;
   out.material_names = soup.material_names;
+  out.polygon_object = soup.polygon_object;
+  out.object_names = soup.object_names;
   return true;
 }
 
@@ -343,6 +345,8 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
     out.material_names = used->material_names;
     out.triangle_material.reserve(used->indices.size());
   }
+  const bool objects = !used->object_names.empty();
+  if (objects) out.object_names = used->object_names;
   for (std::size_t p = 0; p < used->polygon_count(); ++p) {
     const std::span<const std::uint32_t> ring(used->indices.data() + used->polygon_start[p],
                                               used->polygon_start[p + 1] - used->polygon_start[p]);
@@ -354,6 +358,7 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
     for (const auto& tri : t.triangles) {
       out.triangles.push_back(tri);
       if (materials) out.triangle_material.push_back(used->polygon_material[p]);
+      if (objects) out.triangle_object.push_back(used->polygon_object[p]);
     }
   }
   r.triangles = out.triangles.size();

@@ -30,7 +30,8 @@
 //
 // Formats:
 //  - OBJ: `v` (extra values such as w or colours ignored), `f` with `i`, `i/t`, `i//n`, `i/t/n`
-//    and negative (relative) indices, `usemtl` (per-triangle material names); `g`, `o`, `s`,
+//    and negative (relative) indices, `usemtl` (per-triangle material names), `o` and `g`
+//    (per-triangle object names: the latest of either, a group line's names joined by spaces); `s`,
 //    `vt`, `vn`, `vp`, `mtllib`, `l`, `p` are ignored; other keywords are ignored and noted.
 //  - OFF: `OFF`, `NOFF`, `COFF`, `CNOFF`, `STOFF`... headers (counts may follow on the header
 //    line), `#` comments anywhere, per-vertex normals/colours and per-face colours ignored.
@@ -101,6 +102,8 @@ struct PolygonSoup {
   std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> polygon_material; // OBJ usemtl: per polygon, into material_names
   std::vector<std::string> material_names;     // empty when the file has no usemtl
+  std::vector<std::uint32_t> polygon_object;   // OBJ o / g: per polygon, into object_names
+  std::vector<std::string> object_names;       // empty when the file has no o or g
   std::size_t faces_declared = 0;
   bool welded = false;                         // STL: identical positions merged while reading
   bool float32_exact = true;                   // every coordinate is exactly a 32-bit float

@@ -21,6 +21,11 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
   std::string max_index_token;
   bool any_usemtl = false;
   std::uint32_t current_material = 0;
+  // Objects: the latest `o` name, else the latest `g` names (a group line may list several;
+  // they are joined by spaces), per face; faces before either belong to the unnamed object 0.
+  bool any_object = false;
+  std::uint32_t current_object = 0;
+  std::unordered_map<std::string, std::uint32_t> object_ids;
   std::unordered_map<std::string, std::uint32_t> material_ids;
   std::map<std::string, std::size_t> ignored_keywords;
   reject_nul_bytes(name, bytes, "the OBJ text");
@@ -69,6 +74,18 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
       }
       soup.polygon_start.push_back(static_cast<std::uint32_t>(soup.indices.size()));
       soup.polygon_material.push_back(current_material);
+      soup.polygon_object.push_back(current_object);
+    } else if (key == "o" || key == "g") {
+      std::string object;
+      for (std::size_t i = 1; i < tokens.size(); ++i) object += (i > 1 ? " " : "") + printable_text(tokens[i]);
+      if (!any_object) {
+        any_object = true;
+        soup.object_names.push_back("");  // faces before the first o / g
+        object_ids.emplace("", 0);
+      }
+      auto [it, inserted] = object_ids.emplace(object, static_cast<std::uint32_t>(soup.object_names.size()));
+      if (inserted) soup.object_names.push_back(object);
+      current_object = it->second;
     } else if (key == "usemtl") {
       const std::string material = tokens.size() > 1 ? std::string(tokens[1]) : std::string("default");
       if (!any_usemtl) {
@@ -79,9 +96,9 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
       auto [it, inserted] = material_ids.emplace(material, static_cast<std::uint32_t>(soup.material_names.size()));
       if (inserted) soup.material_names.push_back(material);
       current_material = it->second;
-    } else if (key == "vt" || key == "vn" || key == "vp" || key == "g" || key == "o" || key == "s" ||
+    } else if (key == "vt" || key == "vn" || key == "vp" || key == "s" ||
                key == "mtllib" || key == "l" || key == "p") {
-      // texture/normal data, grouping, smoothing, materials library, lines and points: not geometry we occlude with
+      // texture/normal data, smoothing, materials library, lines and points: not geometry we occlude with
     } else {
       ++ignored_keywords[std::string(key)];
     }
@@ -92,6 +109,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
                      " ('" + max_index_token + "') is out of range: the file has " +
                      std::to_string(soup.vertices.size()) + " vertices");
   if (!any_usemtl) soup.polygon_material.clear();
+  if (!any_object) soup.polygon_object.clear();
   soup.faces_declared = soup.polygon_count();
   std::size_t listed = 0;  // a garbage file may hold thousands of distinct "keywords": list a few
   for (const auto& [keyword, count] : ignored_keywords) {
