@@ -17,6 +17,7 @@
 #include "io/geo_raster.h"
 #include "io/png_writer.h"
 #include "shared_data.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using skyband::test::run_skyband;

@@ -19,6 +19,7 @@
 #include "io/epw_reader.h"
 #include "io/tmy3_reader.h"
 #include "shared_data.h"
+#include "shared_data.h"
 
 using namespace skyband;
 namespace fs = std::filesystem;
