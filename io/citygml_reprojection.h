@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "io/crs_codes.h"
+
 #include "geometry/vec3.h"
 
 namespace skyband {
@@ -37,11 +39,6 @@ struct CrsInfo {
   std::string heights;          // what the source's z is, in words
   bool latitude_first = true;   // geographic: axis order of the file (EPSG: latitude, longitude)
 };
-
-// The EPSG codes named in a CRS string: for each "EPSG" the last run of digits before the next
-// "EPSG" ("urn:ogc:def:crs:EPSG::6697", "http://www.opengis.net/def/crs/EPSG/0/6697",
-// "EPSG:6697", compound "urn:ogc:def:crs,crs:EPSG::6668,crs:EPSG::6695").
-std::vector<int> crs_epsg_codes(const std::string& crs);
 
 // Classifies a CRS string (srsName). A string naming an EPSG code PROJ knows is classified from
 // PROJ's database; "CRS84" is geographic (longitude first); a code PROJ does not know is

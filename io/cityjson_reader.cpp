@@ -15,6 +15,7 @@
 
 #include "geometry/input_error.h"
 #include "geometry/polygon_with_holes_triangulation.h"
+#include "io/crs_codes.h"
 #include "io/utf8_text.h"
 
 namespace skyband {
@@ -131,26 +132,6 @@ Lod parse_lod(const json& v, const Where& where, const std::string& pointer) {
 }
 
 // ---- CRS -----------------------------------------------------------------------------------
-
-// The EPSG codes named in a CRS string: for each "EPSG" the last run of digits before the next
-// "EPSG" (URN "urn:ogc:def:crs:EPSG::7415", URL ".../crs/EPSG/0/7415", "EPSG:7415", compound
-// URNs "urn:ogc:def:crs,crs:EPSG::28992,crs:EPSG::5709").
-std::vector<int> epsg_codes(const std::string& crs) {
-  const std::string up = lower(crs);
-  std::vector<int> codes;
-  std::size_t pos = up.find("epsg");
-  while (pos != std::string::npos) {
-    const std::size_t next = up.find("epsg", pos + 4);
-    const std::string part = up.substr(pos + 4, next == std::string::npos ? std::string::npos : next - pos - 4);
-    std::size_t end = part.size();
-    while (end > 0 && !std::isdigit(static_cast<unsigned char>(part[end - 1]))) --end;
-    std::size_t begin = end;
-    while (begin > 0 && std::isdigit(static_cast<unsigned char>(part[begin - 1]))) --begin;
-    if (begin < end && end - begin <= 9) codes.push_back(std::stoi(part.substr(begin, end - begin)));
-    pos = next;
-  }
-  return codes;
-}
 
 // ---- Vertices ------------------------------------------------------------------------------
 
@@ -661,13 +642,13 @@ std::string check_crs(const json& root, const Where& where, std::vector<std::str
   const auto& geographic = geographic_epsg_codes();
   std::string refused;
   if (l.find("crs84") != std::string::npos || l.find("crs:84") != std::string::npos) refused = "OGC CRS84";
-  for (const int code : epsg_codes(crs))
+  for (const int code : crs_epsg_codes(crs))
     if (std::find(geographic.begin(), geographic.end(), code) != geographic.end()) refused = "EPSG:" + std::to_string(code);
   if (!refused.empty())
     fail(where, "/metadata/referenceSystem",
          value_text(*rs) + " is a geographic or geocentric CRS (" + refused +
              "): degrees are not metres; reproject to a projected CRS first (e.g. cjio crs_reproject)");
-  if (epsg_codes(crs).empty()) notes.push_back("referenceSystem " + printable_text(crs) + " names no EPSG code: taken as metres");
+  if (crs_epsg_codes(crs).empty()) notes.push_back("referenceSystem " + printable_text(crs) + " names no EPSG code: taken as metres");
   return crs;
 }
 
