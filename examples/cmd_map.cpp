@@ -119,16 +119,8 @@ MapGrid grid_from_model(const MapArgs& a, std::unique_ptr<Scene>& scene) {
     if (a.bounds.size() != 4) throw InputError("--bounds: give four numbers, XMIN,YMIN,XMAX,YMAX (metres)");
     opt.bounds = std::array<double, 4>{a.bounds[0], a.bounds[1], a.bounds[2], a.bounds[3]};
   }
-  TriangleSoup soup;
   std::vector<MeshReadReport> reports;
-  for (const std::string& file : a.meshes) {
-    MeshReadOptions options;
-    if (!a.lod.empty()) options.lod = a.lod;
-    reports.emplace_back();
-    soup.append(read_mesh(file, &reports.back(), options));
-    if (!a.quiet) std::fprintf(stderr, "%s\n", reports.back().summary().c_str());
-  }
-  scene = std::make_unique<Scene>(std::move(soup));
+  scene = std::make_unique<Scene>(load_meshes(a.meshes, a.lod, a.quiet, &reports));
   const GroundGrid grid = make_ground_grid(*scene, ground_triangle_mask(scene->soup(), a.ground_materials), opt);
   MapGrid m;
   m.columns = grid.columns;

@@ -21,6 +21,7 @@
 #include "examples/command_registry.h"
 #include "examples/map_picture.h"
 #include "examples/point_checks.h"
+#include "examples/point_job_args.h"
 #include "examples/provenance.h"
 #include "geometry/input_error.h"
 #include "io/csv_table.h"
@@ -59,14 +60,7 @@ void run(const PaintArgs& a) {
   if (face_col < 0) throw InputError(a.values + ": no 'face' column (skyband points facades writes one)");
   if (value_col < 0) throw InputError(a.values + ": no '" + a.column + "' column to paint (--column names it)");
 
-  TriangleSoup soup;
-  for (const std::string& file : a.meshes) {
-    MeshReadReport report;
-    MeshReadOptions options;
-    if (!a.lod.empty()) options.lod = a.lod;
-    soup.append(read_mesh(file, &report, options));
-    if (!a.quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
-  }
+  const TriangleSoup soup = load_meshes(a.meshes, a.lod, a.quiet);
   const std::size_t nt = soup.triangle_count();
   std::vector<double> sum(nt, 0.0);
   std::vector<std::size_t> count(nt, 0);

@@ -30,6 +30,7 @@
 
 #include "examples/command_registry.h"
 #include "examples/point_checks.h"
+#include "examples/point_job_args.h"
 #include "examples/provenance.h"
 #include "geometry/facade_points.h"
 #include "geometry/ground_grid.h"
@@ -80,15 +81,7 @@ void run_grid(const GridArgs& a) {
     if (a.bounds.size() != 4) throw InputError("--bounds: give four numbers, XMIN,YMIN,XMAX,YMAX (metres)");
     opt.bounds = std::array<double, 4>{a.bounds[0], a.bounds[1], a.bounds[2], a.bounds[3]};
   }
-  TriangleSoup soup;
-  for (const std::string& file : a.meshes) {
-    MeshReadReport report;
-    MeshReadOptions options;
-    if (!a.lod.empty()) options.lod = a.lod;
-    soup.append(read_mesh(file, &report, options));
-    if (!a.quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
-  }
-  const Scene scene(std::move(soup));
+  const Scene scene(load_meshes(a.meshes, a.lod, a.quiet));
   const std::vector<bool> ground_mask = ground_triangle_mask(scene.soup(), a.ground_materials);
   const GroundGrid grid = make_ground_grid(scene, ground_mask, opt);
 
@@ -120,19 +113,6 @@ void run_grid(const GridArgs& a) {
     std::fprintf(stderr, "points grid: warning: no point: is the terrain named by a ground material (--ground-materials)?\n");
 }
 
-// The meshes of a points job, appended in order, with their reports on stderr.
-TriangleSoup read_meshes(const std::vector<std::string>& meshes, const std::string& lod, bool quiet) {
-  TriangleSoup soup;
-  for (const std::string& file : meshes) {
-    MeshReadReport report;
-    MeshReadOptions options;
-    if (!lod.empty()) options.lod = lod;
-    soup.append(read_mesh(file, &report, options));
-    if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
-  }
-  return soup;
-}
-
 void parse_surfaces(const std::vector<std::string>& names, FacadePointsOptions& opt) {
   opt.walls = opt.roofs = false;
   for (const std::string& n : names) {
@@ -156,7 +136,7 @@ void run_facades(const FacadeArgs& a) {
   std::vector<std::pair<std::string, std::string>> inputs;
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
   check_output_file("--out", a.out, inputs);
-  const Scene scene(read_meshes(a.meshes, a.lod, a.quiet));
+  const Scene scene(load_meshes(a.meshes, a.lod, a.quiet));
   const FacadePoints fp = make_facade_points(scene, opt);
 
   const TriangleSoup& soup = scene.soup();

@@ -77,14 +77,18 @@ void PointJobArgs::warn_about_points(const std::string& command, const Scene& sc
   print_point_warnings(command, find_point_warnings(scene, table), points);
 }
 
-TriangleSoup PointJobArgs::load_meshes() const {
+TriangleSoup PointJobArgs::load_meshes() const { return cli::load_meshes(meshes, lod, quiet); }
+
+TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
+                         std::vector<MeshReadReport>* reports) {
   TriangleSoup soup;
-  for (const std::string& file : meshes) {
+  for (const std::string& file : files) {
     MeshReadReport report;
     MeshReadOptions options;
     if (!lod.empty()) options.lod = lod;
     soup.append(read_mesh(file, &report, options));
     if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
+    if (reports) reports->push_back(std::move(report));
   }
   return soup;
 }

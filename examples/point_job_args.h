@@ -12,6 +12,7 @@
 #include "geometry/sky_factors.h"
 #include "geometry/scene.h"
 #include "geometry/triangle_soup.h"
+#include "io/mesh_reader.h"
 #include "io/points_csv.h"
 
 namespace skyband::cli {
@@ -58,6 +59,12 @@ class PointJobArgs {
   double tolerance_ = 0;
   CLI::Option *o_bands_ = nullptr, *o_tolerance_ = nullptr, *o_method_ = nullptr;
 };
+
+// Mesh and city-model files appended in order into one soup, each read at `lod` ("" = each
+// object's highest), each file's read report on stderr unless `quiet`, and kept in `reports`
+// when given (the CRS of a city model is in its report).
+TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
+                         std::vector<MeshReadReport>* reports = nullptr);
 
 // How the points were computed, in plain words: "9,800 points exact by the horizon of closed
 // buildings, 200 exact by the union of the occluders' projections, 0 by the band method".
