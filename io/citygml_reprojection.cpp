@@ -11,6 +11,7 @@
 
 #include "geometry/input_error.h"
 #include "io/cityjson_reader.h"
+#include "io/third_party_fp.h"
 
 namespace skyband {
 namespace {
@@ -84,6 +85,7 @@ int utm_epsg(int geodetic_epsg, int zone, bool north) {
 }  // namespace
 
 CrsInfo classify_crs(const std::string& crs) {
+  const ThirdPartyFpGuard fp;  // PROJ's own floating point
   CrsInfo info;
   const std::string l = lower(crs);
   if (l.find("crs84") != std::string::npos || l.find("crs:84") != std::string::npos) {
@@ -130,6 +132,7 @@ CrsInfo classify_crs(const std::string& crs) {
 }
 
 Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo& source, std::span<Vec3> points) {
+  if (points.empty()) return {};  // nothing to project (the reader reports the empty model)
   // Latitude and longitude of every point, checked, and the box's centre.
   double lat_min = std::numeric_limits<double>::infinity(), lat_max = -lat_min, lon_min = lat_min, lon_max = -lat_min;
   for (const Vec3& p : points) {
@@ -149,6 +152,7 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   const int zone = std::clamp(static_cast<int>(std::floor((lon_centre + 180) / 6)) + 1, 1, 60);
   const bool north = lat_centre >= 0;
 
+  const ThirdPartyFpGuard fp;  // PROJ's own floating point, from here on
   Context c = quiet_context();
   Pj src(proj_create(c.get(), ("EPSG:" + std::to_string(source.epsg)).c_str()));
   Pj horizontal = src ? horizontal_part(c.get(), src.get()) : Pj();

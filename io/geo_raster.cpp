@@ -12,6 +12,7 @@
 
 #include "geometry/input_error.h"
 #include "io/atomic_file.h"
+#include "io/third_party_fp.h"
 
 namespace skyband {
 
@@ -83,6 +84,7 @@ std::string wkt_of(const OGRSpatialReference& srs) {
 }  // namespace
 
 GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pixels) {
+  const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
   register_gdal();
   const std::string name = file.string();
   std::error_code ec;
@@ -136,6 +138,7 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
 }
 
 std::string crs_wkt_of(const std::string& crs, const std::string& what) {
+  const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
   register_gdal();
   QuietGdal quiet;
   OGRSpatialReference srs;
@@ -149,6 +152,7 @@ std::string crs_wkt_of(const std::string& crs, const std::string& what) {
 }
 
 void write_geotiff(const std::filesystem::path& file, const GeoTiffOutput& out) {
+  const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
   register_gdal();
   if (out.values.size() != out.columns * out.rows || out.columns == 0 || out.rows == 0)
     throw InputError(file.string() + ": " + std::to_string(out.values.size()) + " values for a " + std::to_string(out.columns) + " × " +
