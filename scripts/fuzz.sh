@@ -4,7 +4,7 @@
 #
 # Usage: scripts/fuzz.sh SECONDS [TARGET...]     e.g. scripts/fuzz.sh 30, scripts/fuzz.sh 600 mesh_off
 # TARGETs (default all): mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq mesh_citygml
-#   csv_table points_csv times_csv scene_file scene_override epw_reader (the executables are <build>/fuzz/fuzz_<TARGET>).
+#   csv_table points_csv times_csv scene_file scene_override epw_reader weather_file (the executables are <build>/fuzz/fuzz_<TARGET>).
 # Environment:
 #   SKYBAND_FUZZ_BUILD_DIR  build folder (default build-fuzz)
 #   SKYBAND_SHARED_DIR      the shared/ folder with data/ (default ../shared)
@@ -36,7 +36,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 
-ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq mesh_citygml csv_table points_csv times_csv scene_file scene_override epw_reader)
+ALL_TARGETS=(mesh_obj mesh_off mesh_ply mesh_stl mesh_cityjson mesh_cityjsonseq mesh_citygml csv_table points_csv times_csv scene_file scene_override epw_reader weather_file)
 if [ $# -lt 1 ] || ! [[ "$1" =~ ^[0-9]+$ ]] || [ "$1" -lt 1 ]; then
   sed -n '2,9p' "$0" >&2
   exit 2
@@ -89,6 +89,7 @@ seed_extensions() {
     scene_file) echo toml ;;
     scene_override) echo txt ;;  # only fuzz-found/scene_override_* among the shared files
     epw_reader) echo epw ;;
+    weather_file) echo epw ;;  # and fuzz/seeds/weather_file/ (TMY3 CSV)
   esac
 }
 
