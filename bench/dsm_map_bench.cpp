@@ -84,26 +84,6 @@ std::vector<double> shadow_casting_svf(const HeightField& f, int threads) {
   return svf;
 }
 
-// Blocks 5–40 m high with 5–20 m sides on flat ground at 0 (`rough`: a 0.3 m rough terrain
-// instead), 1 m pixels.
-HeightField synthetic_city(std::size_t n, std::uint64_t seed, bool rough) {
-  HeightField f;
-  f.columns = f.rows = n;
-  f.x0 = 85000, f.y0 = 447000 + double(n);
-  f.dx = 1, f.dy = -1;
-  f.heights.assign(n * n, 0.0);
-  gen::Rng rng(seed);
-  for (std::size_t b = 0; b < n * n / 650; ++b) {
-    const std::size_t x = rng.below(n - 20), y = rng.below(n - 20), w = 5 + rng.below(15), d = 5 + rng.below(15);
-    const double z = rng.uniform(5, 40);
-    for (std::size_t r = y; r < y + d; ++r)
-      for (std::size_t c = x; c < x + w; ++c) f.heights[r * n + c] = std::max(f.heights[r * n + c], z);
-  }
-  if (rough)
-    for (double& h : f.heights)
-      if (h == 0) h = 0.3 * rng.uniform();
-  return f;
-}
 
 void run(const char* name, const HeightField& f, int threads) {
   const auto t0 = Clock::now();
@@ -146,7 +126,7 @@ int main(int argc, char** argv) {
   std::printf("# %d threads; skyband: exact SVF of every pixel (time includes meshing and the column-solid classification)\n", threads);
   std::printf("| raster | pixels | column triangles | skyband pixels/s | shadow casting (153 patches) pixels/s | ratio | shadow casting |error| max / mean | skyband method |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
-  run("synthetic city, flat ground", synthetic_city(size, 5, false), threads);
-  run("synthetic city, 0.3 m rough ground", synthetic_city(size, 5, true), threads);
+  run("synthetic city, flat ground", gen::synthetic_city_dsm(size, 5, false), threads);
+  run("synthetic city, 0.3 m rough ground", gen::synthetic_city_dsm(size, 5, true), threads);
   return 0;
 }

@@ -294,25 +294,6 @@ BenchScene dsm_scene(const std::string& name, const HeightField& f, std::size_t 
   return s;
 }
 
-// Blocks 5–40 m high with 5–20 m sides on a 0.3 m rough terrain, 1 m pixels (the kind of DSM a
-// LiDAR survey of a dense district gives).
-HeightField synthetic_city_dsm(std::size_t n, std::uint64_t seed) {
-  HeightField f;
-  f.columns = f.rows = n;
-  f.x0 = 85000, f.y0 = 447000 + double(n);
-  f.dx = 1, f.dy = -1;
-  f.heights.assign(n * n, 0.0);
-  gen::Rng rng(seed);
-  for (std::size_t b = 0; b < n * n / 650; ++b) {
-    const std::size_t x = rng.below(n - 20), y = rng.below(n - 20), w = 5 + rng.below(15), d = 5 + rng.below(15);
-    const double z = rng.uniform(5, 40);
-    for (std::size_t r = y; r < y + d; ++r)
-      for (std::size_t c = x; c < x + w; ++c) f.heights[r * n + c] = std::max(f.heights[r * n + c], z);
-  }
-  for (double& h : f.heights)
-    if (h == 0) h = 0.3 * rng.uniform();
-  return f;
-}
 
 // A mesh rasterised at `pixel_m` by rays cast down at pixel centres (the highest surface).
 HeightField rasterise(const TriangleSoup& soup, double pixel_m) {
@@ -370,7 +351,7 @@ int main(int argc, char** argv) {
     s.points.insert(s.points.end(), f.begin(), f.end());
     run_scene(s, o);
   }
-  if (wanted("DSM synthetic city 300² 1 m")) run_scene(dsm_scene("DSM synthetic city 300² 1 m", synthetic_city_dsm(300, 5), o.points, 13), o);
+  if (wanted("DSM synthetic city 300² 1 m")) run_scene(dsm_scene("DSM synthetic city 300² 1 m", gen::synthetic_city_dsm(300, 5, true), o.points, 13), o);
   const std::filesystem::path dir = std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings";
   if (wanted("DSM rotterdam block 1 m")) {
     const TriangleSoup rotterdam = read_mesh(dir / "rotterdam_delfshaven_blockA_lod2.obj");

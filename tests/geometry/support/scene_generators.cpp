@@ -1,5 +1,6 @@
 #include "geometry/support/scene_generators.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace skyband::gen {
@@ -267,6 +268,25 @@ std::vector<QueryPoint> open_city_facade_points(const OpenBoxCity& city, std::si
     out.push_back({p + 0.05 * n, n});
   }
   return out;
+}
+
+HeightField synthetic_city_dsm(std::size_t n, std::uint64_t seed, bool rough) {
+  HeightField f;
+  f.columns = f.rows = n;
+  f.x0 = 85000, f.y0 = 447000 + double(n);
+  f.dx = 1, f.dy = -1;
+  f.heights.assign(n * n, 0.0);
+  Rng rng(seed);
+  for (std::size_t b = 0; b < n * n / 650; ++b) {
+    const std::size_t x = rng.below(n - 20), y = rng.below(n - 20), w = 5 + rng.below(15), d = 5 + rng.below(15);
+    const double z = rng.uniform(5, 40);
+    for (std::size_t r = y; r < y + d; ++r)
+      for (std::size_t col = x; col < x + w; ++col) f.heights[r * n + col] = std::max(f.heights[r * n + col], z);
+  }
+  if (rough)
+    for (double& h : f.heights)
+      if (h == 0) h = 0.3 * rng.uniform();
+  return f;
 }
 
 }  // namespace skyband::gen

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/band_visibility.h"
+#include "geometry/height_field.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/triangle_soup.h"
 
@@ -128,5 +129,10 @@ std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::si
                                                 double beyond_m = 0);
 // Points 5 cm in front of wall triangles (outward normal), uniform over the walls' area.
 std::vector<QueryPoint> open_city_facade_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed);
+
+// A synthetic DSM of n × n 1 m pixels (north up, corner (85000, 447000 + n)): n²/650 blocks 5–40 m
+// high with 5–20 m sides on ground at 0, or (`rough`) on a terrain rough by up to 0.3 m — the kind
+// of raster a LiDAR survey of a dense district gives.
+HeightField synthetic_city_dsm(std::size_t n, std::uint64_t seed, bool rough);
 
 }  // namespace skyband::gen
