@@ -241,6 +241,127 @@ void ExactSky::project(const Occluder& o) {
   }
 }
 
+bool ExactSky::project_patch(const HeightPatch& patch) {
+  const Vec3& p = p_;
+  const Aabb& box = patch.box;
+  if (node_hidden(box)) return true;  // every occluder of it hidden, as node_hidden would find each
+  const std::uint32_t k = patch.vertex_count;
+  const Vec3* v = set_.height_patches.vertices.data() + patch.first_vertex;
+  patch_d_.resize(k);
+  patch_circle_.assign(k, kNoCircle);
+  for (std::uint32_t i = 0; i < k; ++i) patch_d_[i] = v[i] - p;
+  const std::vector<Vec3>& d = patch_d_;
+  // Where p's xy lies: strictly outside (an edge with p on its right), strictly inside, or on the
+  // boundary (then nothing is claimed: the occluders are projected one by one).
+  bool outside = false, on_boundary = false;
+  for (std::uint32_t i = 0; i < k && !outside; ++i) {
+    const int s = exact_orient2d_sign(v[i], v[(i + 1) % k], p);
+    outside = s < 0;
+    on_boundary = on_boundary || s == 0;
+  }
+  if (!outside && on_boundary) return false;
+  const auto edge_circle = [&](std::uint32_t e) -> std::uint32_t {
+    if (patch_circle_[e] == kNoCircle) {
+      const Vec3 m = d[e].cross(d[(e + 1) % k]);  // as project(): the same bits from either side
+      const double a = -m.x() / m.z(), b = -m.y() / m.z();
+      if (m.z() != 0 && std::isfinite(a) && std::isfinite(b)) patch_circle_[e] = sky_.add_circle(a, b);
+    }
+    return patch_circle_[e];
+  };
+  ++patches_projected_;
+  if (!outside) {
+    // Over or under p: the member whose xy holds p's tells which (exact orient3d).
+    int over = 0;
+    const std::uint32_t* member = set_.height_patches.members.data() + patch.first_member;
+    for (std::uint32_t j = 0; j < patch.member_count && over == 0; ++j) {
+      const Occluder& o = set_.occluders[member[j]];
+      bool contains = true;
+      for (std::uint32_t i = 0; i < o.count && contains; ++i) contains = exact_orient2d_sign(o.v[i], o.v[(i + 1) % o.count], p) * o.xy_sign >= 0;
+      if (!contains) continue;
+      const int s3 = exact_orientation(o.v[0], o.v[1], o.v[2], p);
+      if (s3 == 0) return false;  // p on the surface
+      over = s3 * o.xy_sign > 0 ? 1 : -1;
+    }
+    if (over == 0) return false;
+    for (std::uint32_t i = 0; i < k; ++i) {
+      const std::uint32_t j = (i + 1) % k;
+      const std::uint32_t c = edge_circle(i);
+      if (c == kNoCircle) continue;
+      const double ri = 1.0 / std::hypot(d[i].x(), d[i].y()), rj = 1.0 / std::hypot(d[j].x(), d[j].y());
+      const double ti = diamond_angle(d[i].x(), d[i].y()), tj = diamond_angle(d[j].x(), d[j].y());
+      if (over > 0) sky_.insert(c, OccludedSky::kZenith, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
+      else sky_.insert(OccludedSky::kGround, c, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
+    }
+    return strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), -over);
+  }
+  // Outside: the azimuth range (less than a half turn) from its first vertex f to its last la,
+  // and the two boundary chains between them; in each azimuth everything between the chains' arcs
+  // is occluded. Where p lies strictly above (below) every member's plane the nearer chain is the
+  // lower (upper) one and that is the whole projection; else the lower of the two is taken per
+  // sub-range, and sub-ranges where they cross are left to the members.
+  const bool above_all = strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), +1);
+  const bool below_all = !above_all && strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), -1);
+  patch_t_.resize(k);
+  patch_u_.resize(k);
+  std::uint32_t f = 0, la = 0;
+  for (std::uint32_t i = 0; i < k; ++i) {
+    patch_t_[i] = diamond_angle(d[i].x(), d[i].y());
+    double u = patch_t_[i] - patch_t_[0];
+    if (u > 2) u -= 4;
+    if (u < -2) u += 4;
+    patch_u_[i] = u;
+    if (u < patch_u_[f]) f = i;
+    if (u > patch_u_[la]) la = i;
+  }
+  if (f == la) return false;
+  // The forward chain f, f + 1, …, la (counter-clockwise round the patch) is the near one when p
+  // lies right of its edges.
+  int forward_side = 0;
+  for (std::uint32_t i = f; i != la && forward_side == 0; i = (i + 1) % k) forward_side = exact_orient2d_sign(v[i], v[(i + 1) % k], p);
+  if (forward_side == 0) return false;
+  const bool forward_near = forward_side < 0;
+  const auto dir = [&](std::uint32_t i, double& wx, double& wy) {
+    const double r = 1.0 / std::hypot(d[i].x(), d[i].y());
+    wx = d[i].x() * r, wy = d[i].y() * r;
+  };
+  std::uint32_t a = f, b = f;  // current vertex of the forward and the backward chain
+  std::uint32_t at = f;
+  double x = patch_u_[f];
+  bool whole = above_all || below_all;
+  while (a != la && b != la) {
+    const std::uint32_t an = (a + 1) % k, bn = (b + k - 1) % k;
+    const double ea = patch_u_[an], eb = patch_u_[bn];
+    const double next = std::min(ea, eb);
+    const std::uint32_t next_vertex = ea <= eb ? an : bn;
+    if (next > x) {
+      const std::uint32_t cf = edge_circle(a), cb = edge_circle(bn);  // edges a → an and bn → b
+      if (cf != kNoCircle && cb != kNoCircle) {
+        double w0x, w0y, w1x, w1y;
+        dir(at, w0x, w0y);
+        dir(next_vertex, w1x, w1y);
+        std::uint32_t lo = kNoCircle, hi = kNoCircle;
+        if (above_all || below_all) {
+          const bool forward_lower = forward_near == above_all;
+          lo = forward_lower ? cf : cb, hi = forward_lower ? cb : cf;
+        } else {
+          const double f0 = sky_.value(cf, w0x, w0y), b0 = sky_.value(cb, w0x, w0y);
+          const double f1 = sky_.value(cf, w1x, w1y), b1 = sky_.value(cb, w1x, w1y);
+          if (f0 <= b0 && f1 <= b1) lo = cf, hi = cb;
+          else if (f0 >= b0 && f1 >= b1) lo = cb, hi = cf;
+        }
+        if (lo != kNoCircle) sky_.insert(lo, hi, patch_t_[at], w0x, w0y, patch_t_[next_vertex], w1x, w1y);
+      } else {
+        whole = false;
+      }
+      x = next;
+      at = next_vertex;
+    }
+    if (ea <= next) a = an;
+    if (eb <= next) b = bn;
+  }
+  return whole;
+}
+
 void ExactSky::walk() {
   const std::vector<OccluderNode>& nodes = set_.nodes;
   if (nodes.empty()) return;
@@ -274,7 +395,14 @@ void ExactSky::walk() {
   // deferral, which only changes the order (a terrain's far triangles wait until the near ones
   // have closed the gaps under it).
   if (opened_.size() != nodes.size()) opened_.assign(nodes.size(), 0);
-  if (++generation_ == 0) std::fill(opened_.begin(), opened_.end(), 0), generation_ = 1;
+  if (patch_seen_.size() != set_.height_patches.patches.size()) {
+    patch_seen_.assign(set_.height_patches.patches.size(), 0);
+    patch_whole_.assign(set_.height_patches.patches.size(), 0);
+  }
+  if (++generation_ == 0) {
+    std::fill(opened_.begin(), opened_.end(), 0), generation_ = 1;
+    std::fill(patch_seen_.begin(), patch_seen_.end(), 0), std::fill(patch_whole_.begin(), patch_whole_.end(), 0);
+  }
   deferred_.clear();
   push(0);
   for (;;) {
@@ -296,8 +424,19 @@ void ExactSky::walk() {
       }
       if (node.count > 0) {
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+          const Occluder& o = set_.occluders[k];
+          if (o.patch != kNoPatch) {
+            if (patch_seen_[o.patch] != generation_) {
+              patch_seen_[o.patch] = generation_;
+              if (project_patch(set_.height_patches.patches[o.patch])) patch_whole_[o.patch] = generation_;
+            }
+            if (patch_whole_[o.patch] == generation_) {
+              ++skipped_;
+              continue;
+            }
+          }
           const std::size_t before = sky_.splices();
-          project(set_.occluders[k]);
+          project(o);
           changing_ += sky_.splices() != before;
         }
         continue;
@@ -320,7 +459,7 @@ void ExactSky::walk() {
 void ExactSky::compute(const QueryPoint& q, SkyFactors& out) {
   n_ = q.normal;
   p_ = q.position + offset_m_ * n_;
-  projected_ = nodes_visited_ = changing_ = 0;
+  projected_ = nodes_visited_ = changing_ = patches_projected_ = skipped_ = 0;
   sky_.reset();
   insert_back_of_face();
   sky_.clear_changed();

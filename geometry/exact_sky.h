@@ -9,7 +9,9 @@
 // nodes whose whole box is already occluded over its azimuth range are skipped; each occluder
 // reached is projected exactly: in each azimuth of its range it covers the elevations between two
 // of its edges' great-circle arcs, or, when it lies over (under) the point, from one edge's arc up
-// to the zenith (down to the nadir). Nothing depends on orientation, closure or manifoldness:
+// to the zenith (down to the nadir). A height patch (geometry/height_patch.h) is projected from its
+// boundary when its first occluder is reached, and its occluders are skipped where that is all of
+// it. Nothing depends on orientation, closure or manifoldness:
 // open boxes without floors, party walls modelled once or twice, T-junctions, terrain stitched to
 // buildings, leaning walls, overhangs, bridges and points under a roof are all the same case.
 // Where sky shows below an occluder (a balcony, a bridge) the union simply has more than one
@@ -59,6 +61,8 @@ class ExactSky {
   std::size_t last_occluders_projected() const { return projected_; }
   std::size_t last_nodes_visited() const { return nodes_visited_; }
   std::size_t last_occluders_changing() const { return changing_; }  // projected and changing the union
+  std::size_t last_patches_projected() const { return patches_projected_; }
+  std::size_t last_occluders_skipped() const { return skipped_; }  // members of wholly projected patches
 
   // SVF and exposure of an occluded sky seen with normal n (closed forms per piece).
   static SkyFactors integrate(const OccludedSky& sky, const Vec3& n);
@@ -74,6 +78,9 @@ class ExactSky {
   bool node_bounds(const Aabb& box, Bounds& b) const;
   bool node_hidden(const Aabb& box) const;
   void project(const Occluder& o);
+  // Projects a height patch from its boundary (geometry/height_patch.h); true when that is its
+  // whole projection (or it is hidden or below the horizontal): its occluders may be skipped.
+  bool project_patch(const HeightPatch& patch);
   void walk();
 
   const OccluderSet& set_;
@@ -83,8 +90,13 @@ class ExactSky {
   std::array<std::vector<std::uint32_t>, 128> buckets_;
   std::vector<std::uint32_t> deferred_;       // nodes hidden only if the gaps closed
   std::vector<std::uint32_t> opened_;         // per node: == generation_ once it must be opened
+  std::vector<std::uint32_t> patch_seen_;     // per height patch: == generation_ once projected
+  std::vector<std::uint32_t> patch_whole_;    // == generation_ when that projection was all of it
+  std::vector<Vec3> patch_d_;                 // scratch: boundary vertices relative to the point
+  std::vector<std::uint32_t> patch_circle_;   // scratch: circle per boundary edge
+  std::vector<double> patch_t_, patch_u_;     // scratch: their azimuths, and unwrapped
   std::uint32_t generation_ = 0;
-  std::size_t projected_ = 0, nodes_visited_ = 0, changing_ = 0;
+  std::size_t projected_ = 0, nodes_visited_ = 0, changing_ = 0, patches_projected_ = 0, skipped_ = 0;
 };
 
 }  // namespace skyband

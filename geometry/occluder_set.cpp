@@ -329,6 +329,7 @@ OccluderSet build_occluder_set(const TriangleSoup& soup) {
   std::vector<std::uint32_t> component(set.occluders.size());
   for (std::size_t i = 0; i < set.occluders.size(); ++i) component[i] = linked.find(id[soup.triangles[set.occluders[i].triangle][0]]);
   build_bvh(set, component);
+  set.height_patches = build_height_patches(set.occluders);
   return set;
 }
 

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/height_patch.h"
 #include "geometry/scene.h"
 #include "geometry/triangle_soup.h"
 
@@ -42,6 +43,7 @@ struct Occluder {
   std::uint8_t upper_count = 0;  // 0: not vertical
   std::uint8_t across[2] = {0, 0};
   double lower_top_z = 0;  // metres
+  std::uint32_t patch = kNoPatch;  // the height patch it belongs to (geometry/height_patch.h)
 };
 
 struct OccluderNode {
@@ -57,6 +59,7 @@ struct OccluderSet {
   std::size_t merged_quads = 0;          // pairs of triangles merged into one quad
   std::size_t merged_regions = 0;        // regions of ≥ 3 coplanar triangles merged into a convex polygon
   double max_z = -1e300;                 // metres, the highest vertex
+  HeightPatches height_patches;          // groups of occluders projected as one first
 };
 
 OccluderSet build_occluder_set(const TriangleSoup& soup);
