@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/support/cli_runner.h"
+#include "io/support/tmy3_csv.h"
 #include "shared_data.h"
 
 namespace tt = boost::test_tools;
@@ -296,6 +297,31 @@ BOOST_AUTO_TEST_CASE(a_year_of_weather, *skyband::test::needs_shared_data()) {
                                  q(d / "heino.csv"));
   BOOST_TEST_REQUIRE(heino.exit_code == 0, heino.err);
   BOOST_TEST(heino.err.find("earlier than the sun") != std::string::npos, heino.err);
+}
+
+// The same weather as TMY3 CSV gives the same output, byte for byte: Chicago O'Hare is NREL TMY3
+// data in EPW form, written back as TMY3 CSV (tests/io/support/tmy3_csv.h); the readers must give
+// the same records, the same site and the same timing.
+BOOST_AUTO_TEST_CASE(tmy3_csv_weather_gives_the_epw_result, *skyband::test::needs_shared_data()) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_tmy3");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\n"
+                                  "top,5,5,10,0,0,1\n"
+                                  "southwall,5,0,5,0,-1,0\n";
+  const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
+  std::ofstream(d / "chicago.csv") << skyband::test::epw_as_tmy3(chicago.string(), "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n");
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --from 03-01 --to 03-03 --weather ";
+  const auto epw = run_skyband(base + q(chicago) + " --out " + q(d / "epw.csv"));
+  const auto tmy3 = run_skyband(base + q(d / "chicago.csv") + " --out " + q(d / "tmy3.csv"));
+  BOOST_TEST_REQUIRE(epw.exit_code == 0, epw.err);
+  BOOST_TEST_REQUIRE(tmy3.exit_code == 0, tmy3.err);
+  const auto a = read_csv(d / "epw.csv"), b = read_csv(d / "tmy3.csv");
+  BOOST_TEST_REQUIRE(a.size() == 2u);
+  BOOST_TEST_REQUIRE(b.size() == a.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (const char* c : {"svf", "global_kWh_m2", "sky_kWh_m2", "sun_kWh_m2", "ground_kWh_m2", "global_klxh", "sun_hours"})
+      BOOST_TEST(num(a[i], c) == num(b[i], c), "row " << i << " " << c << ": " << num(a[i], c) << " against " << num(b[i], c));
+  BOOST_TEST(num(a[0], "global_kWh_m2") > 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(bad_weather_input, *skyband::test::needs_shared_data()) {

@@ -18,6 +18,7 @@
 #include "geometry/input_error.h"
 #include "io/epw_reader.h"
 #include "io/tmy3_reader.h"
+#include "io/support/tmy3_csv.h"
 #include "shared_data.h"
 #include "shared_data.h"
 
@@ -50,45 +51,12 @@ std::string error_of(F&& f) {
   return "";
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string v; std::getline(ss, v, ',');) out.push_back(v);
-  return out;
-}
-
-const char* kHeader =
-    "Date (MM/DD/YYYY),Time (HH:MM),ETR (W/m^2),ETRN (W/m^2),GHI (W/m^2),GHI source,GHI uncert (%),DNI (W/m^2),"
-    "DNI source,DNI uncert (%),DHI (W/m^2),DHI source,DHI uncert (%),GH illum (lx),GH illum source,"
-    "Global illum uncert (%),DN illum (lx),DN illum source,DN illum uncert (%),DH illum (lx),DH illum source,"
-    "DH illum uncert (%),Dry-bulb (C),Dry-bulb source,Dry-bulb uncert (code),Dew-point (C),Dew-point source,"
-    "Dew-point uncert (code),Alb (unitless),Alb source,Alb uncert (code)\n";
-
-// An EPW record's line as a TMY3 record: EPW fields (1-based) 2, 3, 1 date; 4 hour; 11, 12 ETR,
-// ETRN; 14–16 radiation; 17–19 illuminance; 7 dry bulb; 8 dew point; 33 albedo. EPW missing
-// codes (999999 lux, 99.9 °C, 999 albedo) become -9900.
-std::string tmy3_line(const std::string& epw_line) {
-  const auto f = split(epw_line);
-  const auto at = [&](int k) { return f[std::size_t(k - 1)]; };
-  const auto lux = [&](int k) { return std::stod(at(k)) >= 999900 ? std::string("-9900") : at(k); };
-  char date[32];
-  std::snprintf(date, sizeof date, "%02d/%02d/%04d,%02d:00", std::stoi(at(2)), std::stoi(at(3)), std::stoi(at(1)), std::stoi(at(4)));
-  const std::string dew = std::stod(at(8)) >= 99.9 ? "-9900" : at(8);
-  const std::string albedo = std::stod(at(33)) >= 999 ? "-9900" : at(33);
-  return std::string(date) + "," + at(11) + "," + at(12) + "," + at(14) + ",1,8," + at(15) + ",1,8," + at(16) + ",1,8," + lux(17) +
-         ",1,8," + lux(18) + ",1,8," + lux(19) + ",1,8," + at(7) + ",A,7," + dew + ",A,7," + albedo + ",F,8\n";
-}
-
 const std::string kSite = "725300,\"CHICAGO OHARE INTL AP\",IL,-6.0,41.983,-87.917,201\n";
 
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series, *skyband::test::needs_shared_data()) {
-  std::ifstream in(kChicago);
-  std::string line, csv = "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n" + std::string(kHeader);
-  for (int k = 0; std::getline(in, line); ++k)
-    if (k >= 8) csv += tmy3_line(line);
-  const fs::path f = write_text("chicago_tmy3.csv", csv);
+  const fs::path f = write_text("chicago_tmy3.csv", test::epw_as_tmy3(kChicago, "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n"));
   const WeatherSeries a = read_epw(kChicago), b = read_weather_file(f);
   BOOST_TEST(b.location.time_zone_hours == a.location.time_zone_hours);
   BOOST_TEST(b.location.latitude_deg == a.location.latitude_deg);
@@ -110,7 +78,7 @@ BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series, *skyband::test::n
 
 BOOST_AUTO_TEST_CASE(hour_ending_records_and_missing_codes) {
   // Two hours of 1 January: hour 01:00 covers 00:00–01:00, its sun at 00:30 (mid_hour 0.5).
-  const std::string csv = kSite + kHeader +
+  const std::string csv = kSite + test::kTmy3Header +
                           "01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,-9900,1,0,-9900,1,0,-9900,1,0,-5.0,A,7,-9900,A,7,-9900,F,8\n"
                           "01/01/1990,02:00,0,0,12,1,8,30,1,8,5,1,8,1200,1,8,2000,1,8,600,1,8,-5.0,A,7,-7.5,A,7,1.5,F,8\n";
   const WeatherSeries s = read_tmy3_csv(write_text("two.csv", csv));
@@ -129,7 +97,7 @@ BOOST_AUTO_TEST_CASE(hour_ending_records_and_missing_codes) {
 }
 
 BOOST_AUTO_TEST_CASE(day_month_and_year_wrap) {
-  std::string csv = kSite + kHeader;
+  std::string csv = kSite + test::kTmy3Header;
   const auto row = [](const char* date, const char* time) {
     return std::string(date) + "," + time + ",0,0,1,1,8,0,1,8,1,1,8,0,1,8,0,1,8,0,1,8,0,A,7,0,A,7,0.2,F,8\n";
   };
@@ -145,15 +113,15 @@ BOOST_AUTO_TEST_CASE(day_month_and_year_wrap) {
 
 BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
   const std::string ok = "01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n";
-  const auto with = [&](const std::string& record) { return kSite + kHeader + record; };
+  const auto with = [&](const std::string& record) { return kSite + test::kTmy3Header + record; };
   struct Case {
     std::string name, text, message;
   };
   const std::vector<Case> cases{
       {"empty.csv", "", "a site line and a column line"},
-      {"site.csv", "725300,CHICAGO\n" + std::string(kHeader) + ok, "site.csv:1: the site line has 2 fields"},
+      {"site.csv", "725300,CHICAGO\n" + std::string(test::kTmy3Header) + ok, "site.csv:1: the site line has 2 fields"},
       {"nocol.csv", kSite + "Date (MM/DD/YYYY),Time (HH:MM)\n01/01/1990,01:00\n", "no column 'GHI (W/m^2)'"},
-      {"norec.csv", kSite + kHeader, "no weather records"},
+      {"norec.csv", kSite + test::kTmy3Header, "no weather records"},
       {"ghi.csv", with("01/01/1990,01:00,0,0,-9900,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
        "ghi.csv:3: GHI (W/m^2) = '-9900': missing"},
       {"neg.csv", with("01/01/1990,01:00,0,0,0,1,0,-3,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
@@ -165,7 +133,7 @@ BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
       {"date.csv", with("13/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'13/01/1990': no such date"},
       {"time.csv", with("01/01/1990,00:30,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'00:30'"},
       {"short.csv", with("01/01/1990,01:00,0,0\n"), "short.csv:3: 4 fields for 31 columns"},
-      {"tz.csv", "725300,X,IL,-26,41.98,-87.92,201\n" + std::string(kHeader) + ok, "time zone = '-26'"},
+      {"tz.csv", "725300,X,IL,-26,41.98,-87.92,201\n" + std::string(test::kTmy3Header) + ok, "time zone = '-26'"},
   };
   for (const Case& c : cases) {
     const std::string m = error_of([&] { read_tmy3_csv(write_text(c.name, c.text)); });
