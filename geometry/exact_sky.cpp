@@ -9,7 +9,6 @@
 #include "geometry/visible_sky.h"
 
 namespace skyband {
-
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -404,6 +403,24 @@ void ExactSky::walk() {
     std::fill(patch_seen_.begin(), patch_seen_.end(), 0), std::fill(patch_whole_.begin(), patch_whole_.end(), 0);
   }
   deferred_.clear();
+  small_.clear();
+  // One occluder: a height patch's boundary first (once), then the occluder unless that was all.
+  const auto visit = [&](std::uint32_t k) {
+    const Occluder& o = set_.occluders[k];
+    if (o.patch != kNoPatch) {
+      if (patch_seen_[o.patch] != generation_) {
+        patch_seen_[o.patch] = generation_;
+        if (project_patch(set_.height_patches.patches[o.patch])) patch_whole_[o.patch] = generation_;
+      }
+      if (patch_whole_[o.patch] == generation_) {
+        ++skipped_;
+        return;
+      }
+    }
+    const std::size_t before = sky_.splices();
+    project(o);
+    changing_ += sky_.splices() != before;
+  };
   push(0);
   for (;;) {
     while (filled[0] | filled[1]) {
@@ -424,20 +441,11 @@ void ExactSky::walk() {
       }
       if (node.count > 0) {
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-          const Occluder& o = set_.occluders[k];
-          if (o.patch != kNoPatch) {
-            if (patch_seen_[o.patch] != generation_) {
-              patch_seen_[o.patch] = generation_;
-              if (project_patch(set_.height_patches.patches[o.patch])) patch_whole_[o.patch] = generation_;
-            }
-            if (patch_whole_[o.patch] == generation_) {
-              ++skipped_;
-              continue;
-            }
+          if (small_fraction_ > 0 && looks_small(set_.occluders[k])) {
+            small_.push_back(k);
+            continue;
           }
-          const std::size_t before = sky_.splices();
-          project(o);
-          changing_ += sky_.splices() != before;
+          visit(k);
         }
         continue;
       }
@@ -454,6 +462,14 @@ void ExactSky::walk() {
     }
     if (!(filled[0] | filled[1])) break;
   }
+  // Occluders that look small from the point go last, in the order they were met: by then the
+  // large ones have built most of the union and most small ones are culled as hidden.
+  for (const std::uint32_t k : small_) visit(k);
+}
+
+bool ExactSky::looks_small(const Occluder& o) const {
+  // Twice the area over the squared distance of its first vertex: about twice the solid angle.
+  return o.area2_m2 < small_fraction_ * (o.v[0] - p_).squaredNorm();
 }
 
 void ExactSky::compute(const QueryPoint& q, SkyFactors& out) {

@@ -82,6 +82,7 @@ class ExactSky {
   // whole projection (or it is hidden or below the horizontal): its occluders may be skipped.
   bool project_patch(const HeightPatch& patch);
   void walk();
+  bool looks_small(const Occluder& o) const;
 
   const OccluderSet& set_;
   double offset_m_;
@@ -89,6 +90,8 @@ class ExactSky {
   OccludedSky sky_;
   std::array<std::vector<std::uint32_t>, 128> buckets_;
   std::vector<std::uint32_t> deferred_;       // nodes hidden only if the gaps closed
+  std::vector<std::uint32_t> small_;          // occluders seen small, projected last
+  double small_fraction_ = 5e-4;              // twice the solid angle (sr) below which an occluder is small
   std::vector<std::uint32_t> opened_;         // per node: == generation_ once it must be opened
   std::vector<std::uint32_t> patch_seen_;     // per height patch: == generation_ once projected
   std::vector<std::uint32_t> patch_whole_;    // == generation_ when that projection was all of it

@@ -216,6 +216,10 @@ void build_bvh(OccluderSet& set, const std::vector<std::uint32_t>& component) {
     sorted[k] = set.occluders[order[k]];
     sorted[k].xy_sign = exact_orient2d_sign(sorted[k].v[0], sorted[k].v[1], sorted[k].v[2]);
     if (sorted[k].xy_sign == 0) set_vertical_chains(sorted[k]);
+    const Occluder& o = sorted[k];
+    Vec3 m = (o.v[1] - o.v[0]).cross(o.v[2] - o.v[0]);
+    if (o.count == 4) m += (o.v[2] - o.v[0]).cross(o.v[3] - o.v[0]);
+    sorted[k].area2_m2 = m.norm();
   }
   set.occluders.swap(sorted);
 }

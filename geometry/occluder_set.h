@@ -44,6 +44,7 @@ struct Occluder {
   std::uint8_t across[2] = {0, 0};
   double lower_top_z = 0;  // metres
   std::uint32_t patch = kNoPatch;  // the height patch it belongs to (geometry/height_patch.h)
+  double area2_m2 = 0;             // twice its area
 };
 
 struct OccluderNode {
