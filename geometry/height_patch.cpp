@@ -212,7 +212,8 @@ HeightPatches build_height_patches(std::vector<Occluder>& occluders, std::uint32
       patch.h_min = std::min(patch.h_min, h);
       patch.h_max = std::max(patch.h_max, h);
     }
-    if (!std::isfinite(patch.slope_x + patch.slope_y + patch.h_min + patch.h_max)) patch.slope_x = patch.slope_y = std::numeric_limits<double>::infinity();
+    if (!std::isfinite(patch.slope_x + patch.slope_y + patch.h_min + patch.h_max))
+      patch.slope_x = patch.slope_y = std::numeric_limits<double>::infinity();
     out.patches.push_back(patch);
   }
   return out;

@@ -40,9 +40,9 @@ struct Occluder;
 inline constexpr std::uint32_t kNoPatch = 0xffffffffu;
 
 struct HeightPatch {
-  std::uint32_t first_vertex = 0, vertex_count = 0;      // boundary, counter-clockwise in xy
-  std::uint32_t first_member = 0, member_count = 0;      // indices of its occluders
-  Aabb box;                                              // of all its occluders' vertices
+  std::uint32_t first_vertex = 0, vertex_count = 0;  // boundary, counter-clockwise in xy
+  std::uint32_t first_member = 0, member_count = 0;  // indices of its occluders
+  Aabb box;                                          // of all its occluders' vertices
   // Bounds of the occluders' planes z = h_c + a (x − cx) + b (y − cy), heights relative to cz:
   // h_c ∈ [h_min, h_max], |a| ≤ slope_x, |b| ≤ slope_y (metres, dimensionless).
   double cx = 0, cy = 0, cz = 0, h_min = 0, h_max = 0, slope_x = 0, slope_y = 0;
@@ -50,8 +50,8 @@ struct HeightPatch {
 
 struct HeightPatches {
   std::vector<HeightPatch> patches;
-  std::vector<Vec3> vertices;           // the patches' boundaries
-  std::vector<std::uint32_t> members;   // the patches' occluders
+  std::vector<Vec3> vertices;          // the patches' boundaries
+  std::vector<std::uint32_t> members;  // the patches' occluders
 };
 
 // Groups the non-vertical occluders (xy_sign != 0) into patches of 2 … max_members occluders and

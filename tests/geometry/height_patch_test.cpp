@@ -37,8 +37,10 @@ void add_tin(TriangleSoup& s, int n, double x0, double y0, double cell, const st
   const auto at = [&](int i, int j) { return Vec3(x0 + i * cell, y0 + j * cell, h[j * (n + 1) + i]); };
   int k = 0;
   const auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    if (++k % 3 == 0) add_triangle(s, a, c, b);
-    else add_triangle(s, a, b, c);
+    if (++k % 3 == 0)
+      add_triangle(s, a, c, b);
+    else
+      add_triangle(s, a, b, c);
   };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -105,11 +107,12 @@ BOOST_AUTO_TEST_CASE(patches_tile_their_convex_outlines) {
       for (std::uint32_t c = 0; c < o.count; ++c)
         for (std::uint32_t i = 0; i < k; ++i) BOOST_TEST(exact_orient2d_sign(v[i], v[(i + 1) % k], o.v[c]) >= 0);
     }
-    BOOST_TEST(std::abs(members - xy_area(v, k)) < 1e-12 * members, "patch " << p << ": members " << members << " outline " << xy_area(v, k));
+    BOOST_TEST(std::abs(members - xy_area(v, k)) < 1e-12 * members,
+               "patch " << p << ": members " << members << " outline " << xy_area(v, k));
     largest = std::max(largest, patch.member_count);
     grouped += patch.member_count;
   }
-  BOOST_TEST(largest >= 4u);                   // a grid of squares grows beyond one cell
+  BOOST_TEST(largest >= 4u);  // a grid of squares grows beyond one cell
   BOOST_TEST(grouped >= soup.triangles.size() / 2);
 }
 
@@ -144,7 +147,8 @@ BOOST_AUTO_TEST_CASE(points_around_over_and_under_patches_against_the_oracle) {
       const double x = rng.uniform(lo, hi), y = rng.uniform(lo, hi);
       double z = rng.uniform(below, above);
       if (i % 3 == 0)  // on the surface's lower or upper side, 5 cm away
-        if (const auto hit = scene.surface_hit(Ray{Vec3(x, y, 100), Vec3(0, 0, -1)})) z = hit->position.z() + (i % 2 ? -0.05 : 0.05);
+        if (const auto hit = scene.surface_hit(Ray{Vec3(x, y, 100), Vec3(0, 0, -1)}))
+          z = hit->position.z() + (i % 2 ? -0.05 : 0.05);
       QueryPoint q{Vec3(x, y, z), Vec3(0, 0, 1)};
       if (i % 4 == 1) q.normal = rng.unit_normal(0, kPi, 0, 6.28);
       pts.push_back(q);
@@ -179,8 +183,8 @@ BOOST_AUTO_TEST_CASE(points_around_over_and_under_patches_against_the_oracle) {
     add_tin(soup, 8, 0, 0, 4, [&](int i, int j) { return 0.3 * std::abs(i - 4) * 4 + 0.05 * j + rng.uniform(0, 0.1); });
     check_against_oracle(soup, points(Scene(soup), -5, 37, 0, 6, 36), "steep valley", totals);
   }
-  BOOST_TEST_MESSAGE("height patches: largest difference from the oracle " << totals.worst << ", " << totals.patches
-                                                                           << " patch projections, " << totals.skipped << " members skipped");
+  BOOST_TEST_MESSAGE("height patches: largest difference from the oracle "
+                     << totals.worst << ", " << totals.patches << " patch projections, " << totals.skipped << " members skipped");
   BOOST_TEST(totals.patches > 100u);  // the patch paths ran
   BOOST_TEST(totals.skipped > 100u);
 }

@@ -26,11 +26,12 @@ inline std::string tmy3_line(const std::string& epw_line) {
   const auto at = [&](int k) { return f[std::size_t(k - 1)]; };
   const auto lux = [&](int k) { return std::stod(at(k)) >= 999900 ? std::string("-9900") : at(k); };
   char date[32];
-  std::snprintf(date, sizeof date, "%02d/%02d/%04d,%02d:00", std::stoi(at(2)), std::stoi(at(3)), std::stoi(at(1)), std::stoi(at(4)));
+  std::snprintf(date, sizeof date, "%02d/%02d/%04d,%02d:00", std::stoi(at(2)), std::stoi(at(3)), std::stoi(at(1)),
+                std::stoi(at(4)));
   const std::string dew = std::stod(at(8)) >= 99.9 ? "-9900" : at(8);
   const std::string albedo = std::stod(at(33)) >= 999 ? "-9900" : at(33);
-  return std::string(date) + "," + at(11) + "," + at(12) + "," + at(14) + ",1,8," + at(15) + ",1,8," + at(16) + ",1,8," + lux(17) +
-         ",1,8," + lux(18) + ",1,8," + lux(19) + ",1,8," + at(7) + ",A,7," + dew + ",A,7," + albedo + ",F,8\n";
+  return std::string(date) + "," + at(11) + "," + at(12) + "," + at(14) + ",1,8," + at(15) + ",1,8," + at(16) + ",1,8," +
+         lux(17) + ",1,8," + lux(18) + ",1,8," + lux(19) + ",1,8," + at(7) + ",A,7," + dew + ",A,7," + albedo + ",F,8\n";
 }
 
 // The whole TMY3 CSV of an EPW file: `site` (the first line: USAF id, name, state, time zone,
