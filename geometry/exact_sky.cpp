@@ -240,6 +240,21 @@ void ExactSky::project(const Occluder& o) {
   }
 }
 
+// Is the point strictly above (side > 0) or below (side < 0) the plane of every member? The
+// patch's plane bounds decide most cases; else each member's exact orient3d.
+bool ExactSky::beyond_every_plane(const HeightPatch& patch, int side) const {
+  const Vec3& p = p_;
+  if (strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), side)) return true;
+  if (side > 0 ? p.z() <= patch.box.lo.z() : p.z() >= patch.box.hi.z()) return false;  // not beyond the lowest (highest) vertex
+  const std::uint32_t* member = set_.height_patches.members.data() + patch.first_member;
+  for (std::uint32_t j = 0; j < patch.member_count; ++j) {
+    const Occluder& o = set_.occluders[member[j]];
+    // orient3d · xy orientation > 0: the member is over the point (the point below its plane).
+    if (exact_orientation(o.v[0], o.v[1], o.v[2], p) * o.xy_sign != -side) return false;
+  }
+  return true;
+}
+
 bool ExactSky::project_patch(const HeightPatch& patch) {
   const Vec3& p = p_;
   const Aabb& box = patch.box;
@@ -291,15 +306,15 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
       if (over > 0) sky_.insert(c, OccludedSky::kZenith, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
       else sky_.insert(OccludedSky::kGround, c, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
     }
-    return strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), -over);
+    return beyond_every_plane(patch, -over);
   }
   // Outside: the azimuth range (less than a half turn) from its first vertex f to its last la,
   // and the two boundary chains between them; in each azimuth everything between the chains' arcs
   // is occluded. Where p lies strictly above (below) every member's plane the nearer chain is the
   // lower (upper) one and that is the whole projection; else the lower of the two is taken per
   // sub-range, and sub-ranges where they cross are left to the members.
-  const bool above_all = strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), +1);
-  const bool below_all = !above_all && strictly_beyond_every_plane(patch, p.x(), p.y(), p.z(), -1);
+  const bool above_all = beyond_every_plane(patch, +1);
+  const bool below_all = !above_all && beyond_every_plane(patch, -1);
   patch_t_.resize(k);
   patch_u_.resize(k);
   std::uint32_t f = 0, la = 0;

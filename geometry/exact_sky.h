@@ -81,6 +81,7 @@ class ExactSky {
   // Projects a height patch from its boundary (geometry/height_patch.h); true when that is its
   // whole projection (or it is hidden or below the horizontal): its occluders may be skipped.
   bool project_patch(const HeightPatch& patch);
+  bool beyond_every_plane(const HeightPatch& patch, int side) const;
   void walk();
   bool looks_small(const Occluder& o) const;
 
