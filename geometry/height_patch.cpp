@@ -6,6 +6,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "geometry/boundary_cycle.h"
 #include "geometry/exact_sign.h"
 #include "geometry/occluder_set.h"
 #include "geometry/welding.h"
@@ -13,11 +14,6 @@
 namespace skyband {
 
 namespace {
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
 
 // Exact, in xy: does v lie strictly between u and w (u, v, w collinear in xy)?
 bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
@@ -43,33 +39,8 @@ std::vector<std::uint32_t> ccw_ids(const Occluder& o, const std::uint32_t* ids) 
 // positions) when they tile a convex polygon of xy once, else nothing.
 std::vector<std::uint32_t> convex_height_outline(const std::vector<std::vector<std::uint32_t>>& polygons,
                                                  const std::unordered_map<std::uint32_t, Vec3>& position) {
-  std::unordered_map<std::uint64_t, int> net;  // key (a, b), a < b: count(a→b) − count(b→a)
-  for (const auto& poly : polygons)
-    for (std::size_t k = 0; k < poly.size(); ++k) {
-      const std::uint32_t a = poly[k], b = poly[(k + 1) % poly.size()];
-      net[edge_key(a, b)] += a < b ? 1 : -1;
-    }
-  std::unordered_map<std::uint32_t, std::uint32_t> next;
-  std::size_t boundary = 0;
-  for (const auto& [key, m] : net) {
-    if (m == 0) continue;
-    if (m != 1 && m != -1) return {};
-    const auto lo = std::uint32_t(key >> 32), hi = std::uint32_t(key & 0xffffffffu);
-    if (!next.emplace(m > 0 ? lo : hi, m > 0 ? hi : lo).second) return {};
-    ++boundary;
-  }
-  if (boundary < 3) return {};
-  std::uint32_t start = next.begin()->first;
-  for (const auto& [a, b] : next) start = std::min(start, a);
-  std::vector<std::uint32_t> cycle;
-  std::uint32_t v = start;
-  do {
-    cycle.push_back(v);
-    const auto it = next.find(v);
-    if (it == next.end() || cycle.size() > boundary) return {};
-    v = it->second;
-  } while (v != start);
-  if (cycle.size() != boundary) return {};
+  const std::vector<std::uint32_t> cycle = boundary_cycle(polygons);
+  if (cycle.empty()) return {};
   // Convex: every turn left (or straight, through a vertex strictly between its neighbours), and
   // one turn round in all — a locally convex closed polygon turning k times round has k lowest
   // vertices in (y, x) order, so exactly one such vertex makes it a convex, simple polygon.

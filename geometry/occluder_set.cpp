@@ -4,6 +4,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "geometry/boundary_cycle.h"
 #include "geometry/disjoint_sets.h"
 #include "geometry/exact_sign.h"
 #include "geometry/grouped_bvh.h"
@@ -45,11 +46,6 @@ struct PlaneOrientation {
   }
 };
 
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(a) << 32) | b;
-}
-
 
 // Exact: does v lie strictly between u and w on their common line (u, v, w collinear)? Compared
 // along a coordinate in which u and w differ.
@@ -70,43 +66,19 @@ std::vector<Vec3> convex_outline(const TriangleSoup& soup, const std::vector<std
                                  const std::vector<std::uint32_t>& tris) {
   const auto& t0 = soup.triangles[tris[0]];
   const PlaneOrientation orient(soup.vertices[t0[0]], soup.vertices[t0[1]], soup.vertices[t0[2]]);
-  std::unordered_map<std::uint64_t, int> net;  // key (a, b), a < b: count(a→b) − count(b→a)
   std::unordered_map<std::uint32_t, Vec3> position;
+  std::vector<std::vector<std::uint32_t>> turned;  // the triangles, all positive in the plane
   for (const std::uint32_t t : tris) {
     const auto& tri = soup.triangles[t];
-    std::array<std::uint32_t, 3> v = {id[tri[0]], id[tri[1]], id[tri[2]]};
+    std::vector<std::uint32_t> v = {id[tri[0]], id[tri[1]], id[tri[2]]};
     const int s = orient(soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]]);
     if (s == 0) return {};
     if (s < 0) std::swap(v[1], v[2]);
-    for (int k = 0; k < 3; ++k) {
-      position.emplace(id[tri[k]], soup.vertices[tri[k]]);
-      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
-      net[edge_key(a, b)] += a < b ? 1 : -1;
-    }
+    for (int k = 0; k < 3; ++k) position.emplace(id[tri[k]], soup.vertices[tri[k]]);
+    turned.push_back(std::move(v));
   }
-  std::unordered_map<std::uint32_t, std::uint32_t> next;  // boundary cycle: vertex → successor
-  std::size_t boundary = 0;
-  for (const auto& [key, m] : net) {
-    if (m == 0) continue;
-    if (m != 1 && m != -1) return {};
-    const auto lo = std::uint32_t(key >> 32), hi = std::uint32_t(key & 0xffffffffu);
-    const std::uint32_t a = m > 0 ? lo : hi, b = m > 0 ? hi : lo;
-    if (!next.emplace(a, b).second) return {};  // two boundary edges leave a: not one simple cycle
-    ++boundary;
-  }
-  if (boundary < 3) return {};
-  // One cycle through every boundary edge, starting from the smallest id (deterministic).
-  std::uint32_t start = next.begin()->first;
-  for (const auto& [a, b] : next) start = std::min(start, a);
-  std::vector<std::uint32_t> cycle;
-  std::uint32_t v = start;
-  do {
-    cycle.push_back(v);
-    const auto it = next.find(v);
-    if (it == next.end() || cycle.size() > boundary) return {};
-    v = it->second;
-  } while (v != start);
-  if (cycle.size() != boundary) return {};
+  const std::vector<std::uint32_t> cycle = boundary_cycle(turned);
+  if (cycle.empty()) return {};
   std::vector<Vec3> poly;
   for (const std::uint32_t c : cycle) poly.push_back(position.at(c));
   // Drop vertices strictly between their neighbours (repeat: a dropped vertex changes neighbours).
