@@ -20,6 +20,13 @@ double node_distance2(const Aabb& box, const Vec3& p) {
   return dx * dx + dy * dy;
 }
 
+// Exact, in xy: does v lie strictly between u and w on their common line?
+bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
+  for (int a = 0; a < 2; ++a)
+    if (u[a] != w[a]) return (u[a] < v[a] && v[a] < w[a]) || (w[a] < v[a] && v[a] < u[a]);
+  return false;
+}
+
 }  // namespace
 
 ExactSky::ExactSky(const Scene& scene, double surface_offset_m)
@@ -255,6 +262,98 @@ bool ExactSky::beyond_every_plane(const HeightPatch& patch, int side) const {
   return true;
 }
 
+// The exact side of p of every member's plane into patch_side_ (+1 above, −1 below); false when
+// p lies in one of them.
+bool ExactSky::member_sides(const HeightPatch& patch) {
+  patch_side_.resize(patch.member_count);
+  const std::uint32_t* member = set_.height_patches.members.data() + patch.first_member;
+  for (std::uint32_t j = 0; j < patch.member_count; ++j) {
+    const Occluder& o = set_.occluders[member[j]];
+    const int s = exact_orientation(o.v[0], o.v[1], o.v[2], p_) * o.xy_sign;
+    if (s == 0) return false;
+    patch_side_[j] = s > 0 ? -1 : 1;  // orient3d · xy orientation > 0: p below the plane
+  }
+  return true;
+}
+
+// A silhouette edge's end points (azimuth, unwrapped against t_ref, direction) and circle; false
+// when the edge has no circle (it lies in a vertical plane through p).
+bool ExactSky::silhouette_arc(const PatchEdge& edge, double t_ref, ArcVertex& a, ArcVertex& b, std::uint32_t& circle) {
+  const Vec3 da = edge.a - p_, db = edge.b - p_;
+  const Vec3 m = da.cross(db);  // as project(): the same bits from either member
+  const double ca = -m.x() / m.z(), cb = -m.y() / m.z();
+  if (!(m.z() != 0 && std::isfinite(ca) && std::isfinite(cb))) return false;
+  circle = sky_.add_circle(ca, cb);
+  const auto vertex = [&](const Vec3& dv, ArcVertex& w) {
+    const double r = 1.0 / std::hypot(dv.x(), dv.y());
+    w.wx = dv.x() * r, w.wy = dv.y() * r;
+    w.t = diamond_angle(dv.x(), dv.y());
+    w.u = w.t - t_ref;
+    if (w.u > 2) w.u -= 4;
+    if (w.u < -2) w.u += 4;
+  };
+  vertex(da, a);
+  vertex(db, b);
+  return true;
+}
+
+// Unites, over the overlap of two arc chains' azimuth ranges (vertices in increasing unwrapped
+// azimuth u, one circle per segment), everything between them: in each sub-range from the lower
+// to the higher, split where they cross (the chord between the ends' directions cut where the
+// circles' difference, linear in the direction, is zero). False when some sub-range could not be
+// claimed (a segment without a circle, or a crossing that rounding puts outside its sub-range).
+bool ExactSky::insert_between(const std::vector<ArcVertex>& A, const std::vector<std::uint32_t>& ca,
+                              const std::vector<ArcVertex>& B, const std::vector<std::uint32_t>& cb) {
+  if (A.size() < 2 || B.size() < 2) return true;
+  const double start = std::max(A.front().u, B.front().u), end = std::min(A.back().u, B.back().u);
+  if (!(start < end)) return true;
+  std::size_t i = 0, j = 0;
+  while (i + 2 < A.size() && A[i + 1].u <= start) ++i;
+  while (j + 2 < B.size() && B[j + 1].u <= start) ++j;
+  ArcVertex at = A.front().u >= B.front().u ? A.front() : B.front();
+  bool claimed = true;
+  while (i + 1 < A.size() && j + 1 < B.size() && at.u < end) {
+    const ArcVertex& na = A[i + 1];
+    const ArcVertex& nb = B[j + 1];
+    const ArcVertex next = na.u <= nb.u ? na : nb;
+    if (next.u > at.u) {
+      const std::uint32_t c1 = ca[i], c2 = cb[j];
+      if (c1 == kNoCircle || c2 == kNoCircle) {
+        claimed = false;
+      } else {
+        const double d0 = sky_.value(c1, at.wx, at.wy) - sky_.value(c2, at.wx, at.wy);
+        const double d1 = sky_.value(c1, next.wx, next.wy) - sky_.value(c2, next.wx, next.wy);
+        if (d0 <= 0 && d1 <= 0) {
+          sky_.insert(c1, c2, at.t, at.wx, at.wy, next.t, next.wx, next.wy);
+        } else if (d0 >= 0 && d1 >= 0) {
+          sky_.insert(c2, c1, at.t, at.wx, at.wy, next.t, next.wx, next.wy);
+        } else {
+          // d0 and d1 of opposite signs: the zero of d along the chord, d1·w0 − d0·w1 up to sign.
+          const double s = d1 > 0 ? 1.0 : -1.0;
+          double cx = s * (d1 * at.wx - d0 * next.wx), cy = s * (d1 * at.wy - d0 * next.wy);
+          const double r = 1.0 / std::hypot(cx, cy);
+          cx *= r, cy *= r;
+          const double tc = diamond_angle(cx, cy);
+          double uc = tc - at.t + at.u;
+          if (uc > at.u + 2) uc -= 4;
+          if (uc < at.u - 2) uc += 4;
+          if (!(uc > at.u && uc < next.u) || !std::isfinite(r)) {
+            claimed = false;
+          } else {
+            const std::uint32_t lo0 = d0 < 0 ? c1 : c2, hi0 = d0 < 0 ? c2 : c1;
+            sky_.insert(lo0, hi0, at.t, at.wx, at.wy, tc, cx, cy);
+            sky_.insert(hi0, lo0, tc, cx, cy, next.t, next.wx, next.wy);
+          }
+        }
+      }
+      at = next;
+    }
+    if (na.u <= next.u) ++i;
+    if (nb.u <= next.u) ++j;
+  }
+  return claimed;
+}
+
 bool ExactSky::project_patch(const HeightPatch& patch) {
   const Vec3& p = p_;
   const Aabb& box = patch.box;
@@ -306,7 +405,25 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
       if (over > 0) sky_.insert(c, OccludedSky::kZenith, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
       else sky_.insert(OccludedSky::kGround, c, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
     }
-    return beyond_every_plane(patch, -over);
+    if (beyond_every_plane(patch, -over)) return true;
+    // Members on both sides of p: the elevation turns only at silhouette edges, so from over
+    // (under) the patch the nadir (zenith) up to each silhouette edge's arc is occluded too, and
+    // with the boundary that is the whole projection.
+    if (!member_sides(patch)) return false;
+    for (std::uint32_t e = 0; e < patch.edge_count; ++e) {
+      const PatchEdge& edge = set_.height_patches.edges[patch.first_edge + e];
+      if (patch_side_[edge.member[0]] == patch_side_[edge.member[1]]) continue;
+      if (exact_orient2d_sign(edge.a, edge.b, p) == 0) {
+        if (strictly_between_xy(edge.a, p, edge.b)) return false;  // through p's vertical
+        continue;                                                   // seen edge-on: no azimuth range
+      }
+      ArcVertex a, b;
+      std::uint32_t c;
+      if (!silhouette_arc(edge, 0, a, b, c)) return false;
+      if (over > 0) sky_.insert(c, OccludedSky::kZenith, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
+      else sky_.insert(OccludedSky::kGround, c, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
+    }
+    return true;
   }
   // Outside: the azimuth range (less than a half turn) from its first vertex f to its last la,
   // and the two boundary chains between them; in each azimuth everything between the chains' arcs
@@ -338,6 +455,41 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
     const double r = 1.0 / std::hypot(d[i].x(), d[i].y());
     wx = d[i].x() * r, wy = d[i].y() * r;
   };
+  if (!above_all && !below_all && member_sides(patch)) {
+    // Members on both sides of p: along each sight line the elevation turns only at silhouette
+    // edges, so the projection is everything between the near chain's arc and the far chain's or
+    // a silhouette edge's (each pair split where the two arcs cross).
+    const auto chain = [&](bool forward, std::vector<ArcVertex>& out, std::vector<std::uint32_t>& circles) {
+      out.clear(), circles.clear();
+      for (std::uint32_t i = f;; i = forward ? (i + 1) % k : (i + k - 1) % k) {
+        ArcVertex w;
+        w.u = patch_u_[i], w.t = patch_t_[i];
+        dir(i, w.wx, w.wy);
+        out.push_back(w);
+        if (i == la) break;
+        circles.push_back(edge_circle(forward ? i : (i + k - 1) % k));
+      }
+    };
+    chain(forward_near, near_, near_circles_);
+    chain(!forward_near, far_, far_circles_);
+    bool claimed = insert_between(near_, near_circles_, far_, far_circles_);
+    for (std::uint32_t e = 0; e < patch.edge_count; ++e) {
+      const PatchEdge& edge = set_.height_patches.edges[patch.first_edge + e];
+      if (patch_side_[edge.member[0]] == patch_side_[edge.member[1]]) continue;
+      if (exact_orient2d_sign(edge.a, edge.b, p) == 0) continue;  // seen edge-on: no azimuth range
+      ArcVertex sa, sb;
+      std::uint32_t c;
+      if (!silhouette_arc(edge, patch_t_[0], sa, sb, c)) {
+        claimed = false;
+        continue;
+      }
+      if (sa.u > sb.u) std::swap(sa, sb);
+      edge_arc_[0] = sa, edge_arc_[1] = sb;
+      edge_circle_[0] = c;
+      claimed = insert_between(near_, near_circles_, edge_arc_, edge_circle_) && claimed;
+    }
+    return claimed;
+  }
   std::uint32_t a = f, b = f;  // current vertex of the forward and the backward chain
   std::uint32_t at = f;
   double x = patch_u_[f];

@@ -82,6 +82,13 @@ class ExactSky {
   // whole projection (or it is hidden or below the horizontal): its occluders may be skipped.
   bool project_patch(const HeightPatch& patch);
   bool beyond_every_plane(const HeightPatch& patch, int side) const;
+  struct ArcVertex {
+    double u, t, wx, wy;  // unwrapped azimuth, diamond angle, unit horizontal direction
+  };
+  bool member_sides(const HeightPatch& patch);
+  bool silhouette_arc(const PatchEdge& edge, double t_ref, ArcVertex& a, ArcVertex& b, std::uint32_t& circle);
+  bool insert_between(const std::vector<ArcVertex>& A, const std::vector<std::uint32_t>& ca, const std::vector<ArcVertex>& B,
+                      const std::vector<std::uint32_t>& cb);
   void walk();
   bool looks_small(const Occluder& o) const;
 
@@ -99,6 +106,9 @@ class ExactSky {
   std::vector<Vec3> patch_d_;                 // scratch: boundary vertices relative to the point
   std::vector<std::uint32_t> patch_circle_;   // scratch: circle per boundary edge
   std::vector<double> patch_t_, patch_u_;     // scratch: their azimuths, and unwrapped
+  std::vector<int> patch_side_;               // scratch: the point's side of each member's plane
+  std::vector<ArcVertex> near_, far_, edge_arc_ = std::vector<ArcVertex>(2);  // scratch: arc chains
+  std::vector<std::uint32_t> near_circles_, far_circles_, edge_circle_ = std::vector<std::uint32_t>(1);
   std::uint32_t generation_ = 0;
   std::size_t projected_ = 0, nodes_visited_ = 0, changing_ = 0, patches_projected_ = 0, skipped_ = 0;
 };

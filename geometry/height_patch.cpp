@@ -185,6 +185,17 @@ HeightPatches build_height_patches(std::vector<Occluder>& occluders, std::uint32
     }
     if (!std::isfinite(patch.slope_x + patch.slope_y + patch.h_min + patch.h_max))
       patch.slope_x = patch.slope_y = std::numeric_limits<double>::infinity();
+    patch.first_edge = std::uint32_t(out.edges.size());
+    const auto index_of = [&](std::uint32_t occluder) {
+      return std::uint32_t(std::lower_bound(members.begin(), members.end(), occluder) - members.begin());
+    };
+    for (const std::uint32_t m : members)
+      for (std::uint32_t k = 0; k < occluders[m].count; ++k) {
+        const std::uint32_t q = neighbour(m, k);
+        if (q == kNoPatch || q < m || occluders[q].patch != occluders[m].patch) continue;
+        out.edges.push_back({occluders[m].v[k], occluders[m].v[(k + 1) % occluders[m].count], {index_of(m), index_of(q)}});
+      }
+    patch.edge_count = std::uint32_t(out.edges.size()) - patch.first_edge;
     out.patches.push_back(patch);
   }
   return out;
