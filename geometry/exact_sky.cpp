@@ -20,6 +20,24 @@ double node_distance2(const Aabb& box, const Vec3& p) {
   return dx * dx + dy * dy;
 }
 
+// The great circle through the point of an edge from da to db (relative to the point): tan e =
+// a·w_x + b·w_y on the plane with normal da × db — the same bits whichever way round the edge is
+// taken (u × v = −(v × u) exactly), so an edge shared by two occluders gives one arc. False for an
+// edge in a vertical plane through the point (no azimuth range).
+bool edge_circle_coefficients(const Vec3& da, const Vec3& db, double& a, double& b) {
+  const Vec3 m = da.cross(db);
+  a = -m.x() / m.z(), b = -m.y() / m.z();
+  return m.z() != 0 && std::isfinite(a) && std::isfinite(b);
+}
+
+// A diamond angle unwrapped against t_ref, into [−2, 2].
+double unwrapped(double t, double t_ref) {
+  double u = t - t_ref;
+  if (u > 2) u -= 4;
+  if (u < -2) u += 4;
+  return u;
+}
+
 // Exact, in xy: does v lie strictly between u and w on their common line?
 bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
   for (int a = 0; a < 2; ++a)
@@ -132,9 +150,8 @@ void ExactSky::project(const Occluder& o) {
       const std::uint32_t b = o.upper[i];
       const double tb = diamond_angle(d[b].x(), d[b].y());
       const double rb = 1.0 / std::sqrt(d[b].x() * d[b].x() + d[b].y() * d[b].y());
-      const Vec3 m = d[a].cross(d[b]);
-      const double ca = -m.x() / m.z(), cb = -m.y() / m.z();
-      if (m.z() != 0 && std::isfinite(ca) && std::isfinite(cb))
+      double ca, cb;
+      if (edge_circle_coefficients(d[a], d[b], ca, cb))
         sky_.insert(OccludedSky::kGround, sky_.add_circle(ca, cb), ta, d[a].x() * ra, d[a].y() * ra, tb, d[b].x() * rb,
                     d[b].y() * rb);
       a = b, ta = tb, ra = rb;
@@ -151,9 +168,8 @@ void ExactSky::project(const Occluder& o) {
   const auto edge_circle = [&](std::uint32_t e) -> std::uint32_t {
     if (!made[e]) {
       made[e] = true;
-      const Vec3 m = d[e].cross(d[(e + 1) % k]);
-      const double a = -m.x() / m.z(), b = -m.y() / m.z();
-      circle[e] = m.z() != 0 && std::isfinite(a) && std::isfinite(b) ? sky_.add_circle(a, b) : kNoCircle;
+      double a, b;
+      circle[e] = edge_circle_coefficients(d[e], d[(e + 1) % k], a, b) ? sky_.add_circle(a, b) : kNoCircle;
     }
     return circle[e];  // kNoCircle: the edge lies in a vertical plane through p (no azimuth range)
   };
@@ -195,12 +211,9 @@ void ExactSky::project(const Occluder& o) {
   std::array<double, 4> u;  // azimuths unwrapped around vertex 0's
   std::uint32_t f = 0, la = 0;
   for (std::uint32_t i = 0; i < k; ++i) {
-    double v = t[i] - t[0];
-    if (v > 2) v -= 4;
-    if (v < -2) v += 4;
-    u[i] = v;
-    if (v < u[f]) f = i;
-    if (v > u[la]) la = i;
+    u[i] = unwrapped(t[i], t[0]);
+    if (u[i] < u[f]) f = i;
+    if (u[i] > u[la]) la = i;
   }
   if (f == la || exact_orient2d_sign(p, o.v[f], o.v[la]) <= 0) return;  // no azimuth range
   // The chains F → La forwards and backwards around the polygon; the one through a vertex above
@@ -280,17 +293,14 @@ bool ExactSky::member_sides(const HeightPatch& patch) {
 // when the edge has no circle (it lies in a vertical plane through p).
 bool ExactSky::silhouette_arc(const PatchEdge& edge, double t_ref, ArcVertex& a, ArcVertex& b, std::uint32_t& circle) {
   const Vec3 da = edge.a - p_, db = edge.b - p_;
-  const Vec3 m = da.cross(db);  // as project(): the same bits from either member
-  const double ca = -m.x() / m.z(), cb = -m.y() / m.z();
-  if (!(m.z() != 0 && std::isfinite(ca) && std::isfinite(cb))) return false;
+  double ca, cb;
+  if (!edge_circle_coefficients(da, db, ca, cb)) return false;
   circle = sky_.add_circle(ca, cb);
   const auto vertex = [&](const Vec3& dv, ArcVertex& w) {
     const double r = 1.0 / std::hypot(dv.x(), dv.y());
     w.wx = dv.x() * r, w.wy = dv.y() * r;
     w.t = diamond_angle(dv.x(), dv.y());
-    w.u = w.t - t_ref;
-    if (w.u > 2) w.u -= 4;
-    if (w.u < -2) w.u += 4;
+    w.u = unwrapped(w.t, t_ref);
   };
   vertex(da, a);
   vertex(db, b);
@@ -302,8 +312,9 @@ bool ExactSky::silhouette_arc(const PatchEdge& edge, double t_ref, ArcVertex& a,
 // to the higher, split where they cross (the chord between the ends' directions cut where the
 // circles' difference, linear in the direction, is zero). False when some sub-range could not be
 // claimed (a segment without a circle, or a crossing that rounding puts outside its sub-range).
+// `order` > 0 (< 0) when A (B) is known to be the lower one throughout: nothing is compared.
 bool ExactSky::insert_between(const std::vector<ArcVertex>& A, const std::vector<std::uint32_t>& ca,
-                              const std::vector<ArcVertex>& B, const std::vector<std::uint32_t>& cb) {
+                              const std::vector<ArcVertex>& B, const std::vector<std::uint32_t>& cb, int order) {
   if (A.size() < 2 || B.size() < 2) return true;
   const double start = std::max(A.front().u, B.front().u), end = std::min(A.back().u, B.back().u);
   if (!(start < end)) return true;
@@ -321,8 +332,8 @@ bool ExactSky::insert_between(const std::vector<ArcVertex>& A, const std::vector
       if (c1 == kNoCircle || c2 == kNoCircle) {
         claimed = false;
       } else {
-        const double d0 = sky_.value(c1, at.wx, at.wy) - sky_.value(c2, at.wx, at.wy);
-        const double d1 = sky_.value(c1, next.wx, next.wy) - sky_.value(c2, next.wx, next.wy);
+        const double d0 = order != 0 ? -order : sky_.value(c1, at.wx, at.wy) - sky_.value(c2, at.wx, at.wy);
+        const double d1 = order != 0 ? -order : sky_.value(c1, next.wx, next.wy) - sky_.value(c2, next.wx, next.wy);
         if (d0 <= 0 && d1 <= 0) {
           sky_.insert(c1, c2, at.t, at.wx, at.wy, next.t, next.wx, next.wy);
         } else if (d0 >= 0 && d1 >= 0) {
@@ -334,9 +345,7 @@ bool ExactSky::insert_between(const std::vector<ArcVertex>& A, const std::vector
           const double r = 1.0 / std::hypot(cx, cy);
           cx *= r, cy *= r;
           const double tc = diamond_angle(cx, cy);
-          double uc = tc - at.t + at.u;
-          if (uc > at.u + 2) uc -= 4;
-          if (uc < at.u - 2) uc += 4;
+          const double uc = at.u + unwrapped(tc, at.t);
           if (!(uc > at.u && uc < next.u) || !std::isfinite(r)) {
             claimed = false;
           } else {
@@ -375,9 +384,8 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
   if (!outside && on_boundary) return false;
   const auto edge_circle = [&](std::uint32_t e) -> std::uint32_t {
     if (patch_circle_[e] == kNoCircle) {
-      const Vec3 m = d[e].cross(d[(e + 1) % k]);  // as project(): the same bits from either side
-      const double a = -m.x() / m.z(), b = -m.y() / m.z();
-      if (m.z() != 0 && std::isfinite(a) && std::isfinite(b)) patch_circle_[e] = sky_.add_circle(a, b);
+      double a, b;  // as project(): the same bits from either side
+      if (edge_circle_coefficients(d[e], d[(e + 1) % k], a, b)) patch_circle_[e] = sky_.add_circle(a, b);
     }
     return patch_circle_[e];
   };
@@ -427,9 +435,7 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
   }
   // Outside: the azimuth range (less than a half turn) from its first vertex f to its last la,
   // and the two boundary chains between them; in each azimuth everything between the chains' arcs
-  // is occluded. Where p lies strictly above (below) every member's plane the nearer chain is the
-  // lower (upper) one and that is the whole projection; else the lower of the two is taken per
-  // sub-range, and sub-ranges where they cross are left to the members.
+  // is occluded, and with the silhouette edges' intervals that is the whole projection.
   const bool above_all = beyond_every_plane(patch, +1);
   const bool below_all = !above_all && beyond_every_plane(patch, -1);
   patch_t_.resize(k);
@@ -437,12 +443,9 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
   std::uint32_t f = 0, la = 0;
   for (std::uint32_t i = 0; i < k; ++i) {
     patch_t_[i] = diamond_angle(d[i].x(), d[i].y());
-    double u = patch_t_[i] - patch_t_[0];
-    if (u > 2) u -= 4;
-    if (u < -2) u += 4;
-    patch_u_[i] = u;
-    if (u < patch_u_[f]) f = i;
-    if (u > patch_u_[la]) la = i;
+    patch_u_[i] = unwrapped(patch_t_[i], patch_t_[0]);
+    if (patch_u_[i] < patch_u_[f]) f = i;
+    if (patch_u_[i] > patch_u_[la]) la = i;
   }
   if (f == la) return false;
   // The forward chain f, f + 1, …, la (counter-clockwise round the patch) is the near one when p
@@ -451,81 +454,43 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
   for (std::uint32_t i = f; i != la && forward_side == 0; i = (i + 1) % k) forward_side = exact_orient2d_sign(v[i], v[(i + 1) % k], p);
   if (forward_side == 0) return false;
   const bool forward_near = forward_side < 0;
-  const auto dir = [&](std::uint32_t i, double& wx, double& wy) {
-    const double r = 1.0 / std::hypot(d[i].x(), d[i].y());
-    wx = d[i].x() * r, wy = d[i].y() * r;
+  const auto chain = [&](bool forward, std::vector<ArcVertex>& out, std::vector<std::uint32_t>& circles) {
+    out.clear(), circles.clear();
+    for (std::uint32_t i = f;; i = forward ? (i + 1) % k : (i + k - 1) % k) {
+      const double r = 1.0 / std::hypot(d[i].x(), d[i].y());
+      out.push_back({patch_u_[i], patch_t_[i], d[i].x() * r, d[i].y() * r});
+      if (i == la) break;
+      circles.push_back(edge_circle(forward ? i : (i + k - 1) % k));
+    }
   };
-  if (!above_all && !below_all && member_sides(patch)) {
-    // Members on both sides of p: along each sight line the elevation turns only at silhouette
-    // edges, so the projection is everything between the near chain's arc and the far chain's or
-    // a silhouette edge's (each pair split where the two arcs cross).
-    const auto chain = [&](bool forward, std::vector<ArcVertex>& out, std::vector<std::uint32_t>& circles) {
-      out.clear(), circles.clear();
-      for (std::uint32_t i = f;; i = forward ? (i + 1) % k : (i + k - 1) % k) {
-        ArcVertex w;
-        w.u = patch_u_[i], w.t = patch_t_[i];
-        dir(i, w.wx, w.wy);
-        out.push_back(w);
-        if (i == la) break;
-        circles.push_back(edge_circle(forward ? i : (i + k - 1) % k));
-      }
-    };
-    chain(forward_near, near_, near_circles_);
-    chain(!forward_near, far_, far_circles_);
-    bool claimed = insert_between(near_, near_circles_, far_, far_circles_);
-    for (std::uint32_t e = 0; e < patch.edge_count; ++e) {
-      const PatchEdge& edge = set_.height_patches.edges[patch.first_edge + e];
-      if (patch_side_[edge.member[0]] == patch_side_[edge.member[1]]) continue;
-      if (exact_orient2d_sign(edge.a, edge.b, p) == 0) continue;  // seen edge-on: no azimuth range
-      ArcVertex sa, sb;
-      std::uint32_t c;
-      if (!silhouette_arc(edge, patch_t_[0], sa, sb, c)) {
-        claimed = false;
-        continue;
-      }
-      if (sa.u > sb.u) std::swap(sa, sb);
-      edge_arc_[0] = sa, edge_arc_[1] = sb;
-      edge_circle_[0] = c;
-      claimed = insert_between(near_, near_circles_, edge_arc_, edge_circle_) && claimed;
-    }
-    return claimed;
+  chain(forward_near, near_, near_circles_);
+  chain(!forward_near, far_, far_circles_);
+  // Beyond every member's plane the nearer chain is the lower (above) or the upper (below) one.
+  if (above_all || below_all) return insert_between(near_, near_circles_, far_, far_circles_, above_all ? 1 : -1);
+  if (!member_sides(patch)) {  // p in a member's plane: the chains' interval, and the members after it
+    insert_between(near_, near_circles_, far_, far_circles_, 0);
+    return false;
   }
-  std::uint32_t a = f, b = f;  // current vertex of the forward and the backward chain
-  std::uint32_t at = f;
-  double x = patch_u_[f];
-  bool whole = above_all || below_all;
-  while (a != la && b != la) {
-    const std::uint32_t an = (a + 1) % k, bn = (b + k - 1) % k;
-    const double ea = patch_u_[an], eb = patch_u_[bn];
-    const double next = std::min(ea, eb);
-    const std::uint32_t next_vertex = ea <= eb ? an : bn;
-    if (next > x) {
-      const std::uint32_t cf = edge_circle(a), cb = edge_circle(bn);  // edges a → an and bn → b
-      if (cf != kNoCircle && cb != kNoCircle) {
-        double w0x, w0y, w1x, w1y;
-        dir(at, w0x, w0y);
-        dir(next_vertex, w1x, w1y);
-        std::uint32_t lo = kNoCircle, hi = kNoCircle;
-        if (above_all || below_all) {
-          const bool forward_lower = forward_near == above_all;
-          lo = forward_lower ? cf : cb, hi = forward_lower ? cb : cf;
-        } else {
-          const double f0 = sky_.value(cf, w0x, w0y), b0 = sky_.value(cb, w0x, w0y);
-          const double f1 = sky_.value(cf, w1x, w1y), b1 = sky_.value(cb, w1x, w1y);
-          if (f0 <= b0 && f1 <= b1) lo = cf, hi = cb;
-          else if (f0 >= b0 && f1 >= b1) lo = cb, hi = cf;
-        }
-        if (lo != kNoCircle) sky_.insert(lo, hi, patch_t_[at], w0x, w0y, patch_t_[next_vertex], w1x, w1y);
-      } else {
-        whole = false;
-      }
-      x = next;
-      at = next_vertex;
+  // Members on both sides of p: along each sight line the elevation turns only at silhouette
+  // edges, so the projection is everything between the near chain's arc and the far chain's or a
+  // silhouette edge's.
+  bool claimed = insert_between(near_, near_circles_, far_, far_circles_, 0);
+  for (std::uint32_t e = 0; e < patch.edge_count; ++e) {
+    const PatchEdge& edge = set_.height_patches.edges[patch.first_edge + e];
+    if (patch_side_[edge.member[0]] == patch_side_[edge.member[1]]) continue;
+    if (exact_orient2d_sign(edge.a, edge.b, p) == 0) continue;  // seen edge-on: no azimuth range
+    ArcVertex sa, sb;
+    std::uint32_t c;
+    if (!silhouette_arc(edge, patch_t_[0], sa, sb, c)) {
+      claimed = false;
+      continue;
     }
-    if (ea <= next) a = an;
-    if (eb <= next) b = bn;
+    if (sa.u > sb.u) std::swap(sa, sb);
+    edge_arc_[0] = sa, edge_arc_[1] = sb;
+    edge_circle_[0] = c;
+    claimed = insert_between(near_, near_circles_, edge_arc_, edge_circle_, 0) && claimed;
   }
-  return whole;
+  return claimed;
 }
 
 void ExactSky::walk() {

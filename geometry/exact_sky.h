@@ -88,7 +88,7 @@ class ExactSky {
   bool member_sides(const HeightPatch& patch);
   bool silhouette_arc(const PatchEdge& edge, double t_ref, ArcVertex& a, ArcVertex& b, std::uint32_t& circle);
   bool insert_between(const std::vector<ArcVertex>& A, const std::vector<std::uint32_t>& ca, const std::vector<ArcVertex>& B,
-                      const std::vector<std::uint32_t>& cb);
+                      const std::vector<std::uint32_t>& cb, int order);
   void walk();
   bool looks_small(const Occluder& o) const;
 
