@@ -8,6 +8,7 @@
 //                        per vertex (docs/robustness.md);
 //   exact_orientation  — sign of the orientation of four points: whether a triangle's plane
 //                        contains the calculation point (the triangle is then seen edge-on).
+// and, built on them, the 2D orientation of xy-projections and a betweenness test by comparisons.
 #include <cmath>
 
 #include "geometry/vec3.h"
@@ -77,6 +78,14 @@ inline int exact_orient2d_sign(const Vec3& a, const Vec3& b, const Vec3& c) {
     if (det < -bound) return -1;
   }
   return -exact_orientation(Vec3(a.x(), a.y(), 0), Vec3(b.x(), b.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
+}
+
+// Exact (comparisons only): does v lie strictly between u and w in xy, for v on their common xy
+// line? Decided along a coordinate in which u and w differ.
+inline bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
+  for (int a = 0; a < 2; ++a)
+    if (u[a] != w[a]) return (u[a] < v[a] && v[a] < w[a]) || (w[a] < v[a] && v[a] < u[a]);
+  return false;
 }
 
 }  // namespace skyband

@@ -38,13 +38,6 @@ double unwrapped(double t, double t_ref) {
   return u;
 }
 
-// Exact, in xy: does v lie strictly between u and w on their common line?
-bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
-  for (int a = 0; a < 2; ++a)
-    if (u[a] != w[a]) return (u[a] < v[a] && v[a] < w[a]) || (w[a] < v[a] && v[a] < u[a]);
-  return false;
-}
-
 }  // namespace
 
 ExactSky::ExactSky(const Scene& scene, double surface_offset_m)

@@ -15,13 +15,6 @@ namespace skyband {
 
 namespace {
 
-// Exact, in xy: does v lie strictly between u and w (u, v, w collinear in xy)?
-bool strictly_between_xy(const Vec3& u, const Vec3& v, const Vec3& w) {
-  for (int a = 0; a < 2; ++a)
-    if (u[a] != w[a]) return (u[a] < v[a] && v[a] < w[a]) || (w[a] < v[a] && v[a] < u[a]);
-  return false;
-}
-
 // Exact: is the turn u → v → w in xy convex (left), or straight with v strictly between?
 bool convex_turn(const Vec3& u, const Vec3& v, const Vec3& w) {
   const int s = exact_orient2d_sign(u, v, w);
