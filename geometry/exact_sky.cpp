@@ -26,8 +26,9 @@ double node_distance2(const Aabb& box, const Vec3& p) {
 // edge in a vertical plane through the point (no azimuth range).
 bool edge_circle_coefficients(const Vec3& da, const Vec3& db, double& a, double& b) {
   const Vec3 m = da.cross(db);
+  if (m.z() == 0) return false;  // (no division: floating-point traps stay quiet)
   a = -m.x() / m.z(), b = -m.y() / m.z();
-  return m.z() != 0 && std::isfinite(a) && std::isfinite(b);
+  return std::isfinite(a) && std::isfinite(b);
 }
 
 // A diamond angle unwrapped against t_ref, into [−2, 2].
