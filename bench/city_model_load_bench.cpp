@@ -17,7 +17,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 
 using namespace skyband;

@@ -18,12 +18,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/sky_factors.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
 #include "io/epw_reader.h"
 #include "io/mesh_reader.h"
-#include "lighting/climate_irradiation.h"
-#include "lighting/weather_hours.h"
+#include "lighting/climate/climate_irradiation.h"
+#include "lighting/climate/weather_hours.h"
 
 using namespace skyband;
 

@@ -7,7 +7,7 @@
 // 78° with 31, 30, 28, 24, 19, 13, 7 patches and a zenith cap — each patch seen from a pixel when
 // no pixel in its azimuth rises above its altitude (the DSM stepped one pixel along the dominant
 // axis at a time); SVF = Σ visible patches' cosine weights, (sin² β_hi − sin² β_lo) / patches of
-// the annulus. skyband: every pixel's exact SVF over the pixel columns (geometry/height_field.h,
+// the annulus. skyband: every pixel's exact SVF over the pixel columns (geometry/mesh/height_field.h,
 // the horizon of a column solid), as `skyband map --dsm` computes it.
 // Printed per raster: pixels, both methods' pixels/s and their ratio, and the baseline's max and
 // mean |error| against the exact values (the error of a 153-patch discretisation: what a DSM tool
@@ -26,9 +26,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "geometry/height_field.h"
-#include "geometry/scene.h"
-#include "geometry/sky_factors.h"
+#include "geometry/mesh/height_field.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/scene_generators.h"
 
 using namespace skyband;

@@ -1,4 +1,4 @@
-// Irradiance at calculation points (`skyband irradiance`, lighting/point_irradiance.h) on the
+// Irradiance at calculation points (`skyband irradiance`, lighting/integrals/point_irradiance.h) on the
 // procedural cities of bench_svf: points/s of the SVF alone and of the irradiance (SVF + sky
 // quadrature + sun shadow test), and the sky quadrature's error against a 4× finer step.
 //
@@ -12,11 +12,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/band_visibility.h"
+#include "geometry/bands/band_visibility.h"
 #include "geometry/support/scene_generators.h"
-#include "geometry/sky_factors.h"
-#include "lighting/point_irradiance.h"
-#include "lighting/sun.h"
+#include "geometry/visibility/sky_factors.h"
+#include "lighting/integrals/point_irradiance.h"
+#include "lighting/sun/sun.h"
 
 using namespace skyband;
 

@@ -1,4 +1,4 @@
-// bench_render: the paper building (examples/paper_building.h) at 1024×768, N = 64 (defaults):
+// bench_render: the paper building (cli/paper_building.h) at 1024×768, N = 64 (defaults):
 // time of the first image (geometry pass + sun + shading) and of each relit variant (fig 6 suns:
 // sun visibility + sky model + shading), peak memory (getrusage ru_maxrss), and the visibility
 // pass by the paper's band method (the default, as skyband figures) against the exact visible sky
@@ -23,9 +23,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/renderer.h"
-#include "lighting/sun.h"
-#include "examples/paper_building.h"
+#include "render/renderer.h"
+#include "lighting/sun/sun.h"
+#include "cli/paper_building.h"
 
 using namespace skyband;
 

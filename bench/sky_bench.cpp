@@ -11,10 +11,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/atmosphere.h"
-#include "lighting/colour.h"
-#include "lighting/sky_table.h"
-#include "lighting/sun.h"
+#include "lighting/atmosphere/atmosphere.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/atmosphere/sky_table.h"
+#include "lighting/sun/sun.h"
 
 using namespace skyband;
 

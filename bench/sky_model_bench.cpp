@@ -14,10 +14,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/colour.h"
-#include "lighting/sky_model.h"
-#include "lighting/sun.h"
-#include "lighting/sun_position.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/sky/sky_model.h"
+#include "lighting/sun/sun.h"
+#include "lighting/sun/sun_position.h"
 
 using namespace skyband;
 

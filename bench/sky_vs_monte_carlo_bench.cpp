@@ -41,10 +41,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "geometry/exact_sky.h"
-#include "geometry/height_field.h"
-#include "geometry/occluder_set.h"
-#include "geometry/sky_factors.h"
+#include "geometry/exact/exact_sky.h"
+#include "geometry/mesh/height_field.h"
+#include "geometry/exact/occluder_set.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"

@@ -1,5 +1,5 @@
 // Speed-up and error of the ε-truncated partial-sky specular integration (seed §3,
-// lighting/specular_sky.h) against the full reference integral over the same visibility cache,
+// lighting/integrals/specular_sky.h) against the full reference integral over the same visibility cache,
 // for Beckmann roughness m ∈ {0.02, 0.1, 0.3, 0.5}. Sky: CIE general sky type 12 (clear, sun at
 // 35° altitude, reference-notes §3.3) with a blue zenith tint; 64 bands per point; points: open
 // and partly occluded horizontal, vertical and tilted faces; views spread over each hemisphere.
@@ -28,12 +28,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/colour.h"
-#include "lighting/material.h"
-#include "geometry/input_error.h"
-#include "lighting/sky_radiance_grid.h"
-#include "lighting/specular_sky.h"
-#include "lighting/specular_sky_colour.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/brdf/material.h"
+#include "geometry/core/input_error.h"
+#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/integrals/specular_sky.h"
+#include "render/specular_sky_colour.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 

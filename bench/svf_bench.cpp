@@ -22,10 +22,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/band_visibility.h"
-#include "geometry/sky_integral.h"
-#include "geometry/column_scene.h"
-#include "geometry/sky_factors.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sky_integral.h"
+#include "geometry/horizon/column_scene.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 

@@ -7,7 +7,7 @@
 //   columns against 4096 fixed bands (not independent of the method; the exact-oracle comparison
 //   is bench_svf).
 // --scene paper: the renderer's surface points — primary-ray hits of the paper building seen by
-//   its camera at W×H (as lighting/renderer.cpp's trace_geometry makes them: barycentric
+//   its camera at W×H (as render/renderer.cpp's trace_geometry makes them: barycentric
 //   position, normal facing the camera) — the geometry pass of bench_render without shading.
 #include <algorithm>
 #include <chrono>
@@ -20,10 +20,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "examples/paper_building.h"
-#include "geometry/band_visibility.h"
-#include "geometry/camera.h"
-#include "geometry/sky_integral.h"
+#include "cli/paper_building.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/mesh/camera.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/support/scene_generators.h"
 
 using namespace skyband;

@@ -22,7 +22,7 @@
 #include <cxxabi.h>
 #include <unistd.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 
 namespace skyband::fuzz {
 

@@ -1,5 +1,5 @@
 // Fuzz harness for the times file of `skyband irradiance --times`: the input is a whole times
-// file. The CLI's reader (read_moments in examples/cmd_irradiance.cpp) is not a library function,
+// file. The CLI's reader (read_moments in cli/cmd_irradiance.cpp) is not a library function,
 // so this harness repeats its steps over the library calls it makes: read_csv_table, the column
 // look-ups, CsvTable::number for sun_altitude / sun_azimuth / hours with the same range checks,
 // and parse_iso8601 + sun_position_spa for a `time` column (at a fixed site: 52° N, 4.4° E, no
@@ -14,7 +14,7 @@
 
 #include "fuzz/fuzz_support.h"
 #include "io/csv_table.h"
-#include "lighting/sun_position.h"
+#include "lighting/sun/sun_position.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 
 namespace skyband {
 

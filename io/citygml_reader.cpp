@@ -32,8 +32,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "geometry/input_error.h"
-#include "geometry/polygon_with_holes_triangulation.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/polygon_with_holes_triangulation.h"
 #include "io/citygml_reprojection.h"
 #include "io/utf8_text.h"
 

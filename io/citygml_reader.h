@@ -50,7 +50,7 @@
 // GroundSurface, ..., Window, Door; traffic areas "TrafficArea" — libcitygml does not tell
 // auxiliary ones apart; water boundary surfaces "WaterBody"), else the object's type (Building,
 // BuildingPart, TINRelief, LandUse, Road, WaterBody, PlantCover, GenericCityObject, ...). So
-// the terrain classes match default_ground_materials() (lighting/climate_irradiation.h).
+// the terrain classes match default_ground_materials() (lighting/climate/climate_irradiation.h).
 //
 // Coordinate reference system (the srsName, kept in the report): projected CRSs are read as
 // metres verbatim. Geographic CRSs (PLATEAU's EPSG:6697, 4326, 6668, ...: latitude, longitude,
@@ -71,7 +71,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 

@@ -9,7 +9,7 @@
 #include <limits>
 #include <memory>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/cityjson_reader.h"
 #include "io/third_party_fp.h"
 

@@ -25,7 +25,7 @@
 
 #include "io/crs_codes.h"
 
-#include "geometry/vec3.h"
+#include "geometry/core/vec3.h"
 
 namespace skyband {
 

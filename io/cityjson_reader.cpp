@@ -13,8 +13,8 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "geometry/input_error.h"
-#include "geometry/polygon_with_holes_triangulation.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/polygon_with_holes_triangulation.h"
 #include "io/crs_codes.h"
 #include "io/utf8_text.h"
 

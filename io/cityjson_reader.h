@@ -29,7 +29,7 @@
 //    by the reference point, as the specification says). MultiPoint and MultiLineString have no
 //    area and are skipped with a note.
 //  - Surfaces with inner rings (holes) are triangulated by triangulate_polygon_with_holes
-//    (geometry/polygon_with_holes_triangulation.h): triangles inside holes are not produced.
+//    (geometry/mesh/polygon_with_holes_triangulation.h): triangles inside holes are not produced.
 //  - Degenerate input common in real data is repaired, counted and noted, never silently:
 //    a ring with fewer than 3 distinct vertex indices is dropped (an outer ring takes its
 //    surface with it), consecutive repeated indices and a repeated closing vertex are removed,
@@ -76,7 +76,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/utf8_text.h"
 
 namespace skyband {

@@ -1,5 +1,5 @@
 #pragma once
-// EnergyPlus weather files (EPW) → WeatherSeries (lighting/weather_series.h).
+// EnergyPlus weather files (EPW) → WeatherSeries (lighting/climate/weather_series.h).
 //
 // Format: EnergyPlus "Auxiliary Programs", Weather Converter Program, "EnergyPlus Weather File
 // (EPW) Data Dictionary" (NREL/EnergyPlus, doc/auxiliary-programs/src/weather-converter-program/
@@ -34,13 +34,13 @@
 // e.g. "chicago.epw:1203: field 15 (direct normal radiation) = '-3': negative; …".
 //
 // Warnings (returned in WeatherSeries::warnings, each naming the file; only what the file alone
-// shows — consistency with the sun's position is checked in lighting/weather_timing.h):
+// shows — consistency with the sun's position is checked in lighting/climate/weather_timing.h):
 // diffuse above global by more than 5 % in many daylight records, February 29 in a year that is
 // not a leap year, records not covering whole calendar years (not starting 01-01 hour 1 or not
 // ending 12-31 hour 24), invalid albedo values, no solar radiation at all.
 #include <filesystem>
 
-#include "lighting/weather_series.h"
+#include "lighting/climate/weather_series.h"
 
 namespace skyband {
 

@@ -12,7 +12,7 @@
 #include <ImfStringAttribute.h>
 #include <half.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
 
 namespace skyband {

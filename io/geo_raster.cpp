@@ -10,7 +10,7 @@
 #include <memory>
 #include <mutex>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
 #include "io/third_party_fp.h"
 

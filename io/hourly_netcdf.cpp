@@ -5,7 +5,7 @@
 #include <cstring>
 #include <system_error>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 
 namespace skyband {
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/band_visibility.h"
+#include "geometry/bands/band_visibility.h"
 
 namespace skyband {
 

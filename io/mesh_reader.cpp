@@ -15,8 +15,8 @@
 #include <new>
 #include <sstream>
 
-#include "geometry/input_error.h"
-#include "geometry/polygon_triangulation.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/polygon_triangulation.h"
 #include "io/citygml_reader.h"
 #include "io/cityjson_reader.h"
 #include "io/utf8_text.h"

@@ -24,7 +24,7 @@
 //     and drop a face of a PLY with CR LF line ends.
 //  3. Otherwise the validating pass's polygon soup is used ("skyband polygon soup" + the reason).
 //  Either way every polygon with more than 3 vertices is triangulated by triangulate_polygon
-//  (geometry/polygon_triangulation.h: projected constrained Delaunay triangulation, correct for
+//  (geometry/mesh/polygon_triangulation.h: projected constrained Delaunay triangulation, correct for
 //  non-convex and slightly non-planar polygons), and the report says which reader was used and
 //  why, how many faces were read against the faces in the file, and the mesh's defects.
 //
@@ -56,9 +56,9 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/mesh_defects.h"
-#include "geometry/vec3.h"
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/mesh_defects.h"
+#include "geometry/core/vec3.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 

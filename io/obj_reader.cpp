@@ -3,7 +3,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 

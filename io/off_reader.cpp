@@ -8,7 +8,7 @@
 // comes, so a lying count ends in an error at the end of the data.
 #include <algorithm>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 

@@ -4,7 +4,7 @@
 #include <bit>
 #include <cstring>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
 
 namespace skyband {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 

@@ -6,7 +6,7 @@
 
 #include <png.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
 
 namespace skyband {

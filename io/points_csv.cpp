@@ -7,7 +7,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
 #include "io/csv_table.h"
 #include "io/utf8_text.h"

@@ -10,12 +10,12 @@
 
 #include <toml++/toml.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/toml_ascii.h"
 #include "io/utf8_text.h"
-#include "lighting/material.h"
-#include "lighting/sun_position.h"
+#include "lighting/brdf/material.h"
+#include "lighting/sun/sun_position.h"
 
 namespace skyband {
 namespace {

@@ -33,12 +33,12 @@
 //   [quality]
 //   visibility = "auto"      # how each surface sample's visible sky is found: "auto" (exact:
 //                            # the exact horizon where it applies, else the exact union of the
-//                            # occluders; geometry/sky_visibility.h), "exact" (the exact union
+//                            # occluders; geometry/visibility/sky_visibility.h), "exact" (the exact union
 //                            # everywhere) or "bands" (the band method's own geometry pass)
 //   bands = 64               # N equal-weight bands (sample lines), [1, 4096]
 //   tolerance = 0            # 0 = fixed N. Else, exact visibility: N is doubled per sample
 //                            # until the lines' SVF and exposure are within tolerance/2 of the
-//                            # exact values (geometry/sample_lines.h); bands: the band method's
+//                            # exact values (geometry/bands/sample_lines.h); bands: the band method's
 //                            # adaptive refinement target. Either way every point then has its
 //                            # own band layout and therefore its own sky table: much slower
 //                            # shading (see renderer.h).
@@ -69,11 +69,11 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/camera.h"
-#include "geometry/sky_factors.h"
-#include "geometry/triangle_soup.h"
-#include "lighting/atmosphere.h"
-#include "lighting/sky_model.h"
+#include "geometry/mesh/camera.h"
+#include "geometry/visibility/sky_factors.h"
+#include "geometry/mesh/triangle_soup.h"
+#include "lighting/atmosphere/atmosphere.h"
+#include "lighting/sky/sky_model.h"
 
 namespace skyband {
 

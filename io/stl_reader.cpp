@@ -9,7 +9,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 

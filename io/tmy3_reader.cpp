@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/epw_reader.h"
 #include "io/mesh_reader.h"  // mesh_io::for_each_line
 #include "io/utf8_text.h"

@@ -1,5 +1,5 @@
 #pragma once
-// NREL TMY3 CSV weather files → WeatherSeries (lighting/weather_series.h), and the weather-file
+// NREL TMY3 CSV weather files → WeatherSeries (lighting/climate/weather_series.h), and the weather-file
 // entry point that picks EPW or TMY3 by content.
 //
 // Format: Wilcox and Marion, "Users Manual for TMY3 Data Sets", NREL/TP-581-43156 (2008), §3.
@@ -22,7 +22,7 @@
 // albedos, no solar radiation at all.
 #include <filesystem>
 
-#include "lighting/weather_series.h"
+#include "lighting/climate/weather_series.h"
 
 namespace skyband {
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/utf8_text.h"
 
 namespace skyband {

@@ -23,6 +23,7 @@ PACKAGES=(
   libcitygml-dev libxerces-c-dev          # CityGML 1.0/2.0 input (libcitygml parses with Xerces-C)
   libproj-dev proj-data                   # geographic city models (PLATEAU) projected to UTM
   libgdal-dev                             # DSM rasters in, GeoTIFF maps out (skyband map)
+  clang-format                            # the layout check of the sources (scripts/check-format.sh)
 )
 for arg in "$@"; do
   case "$arg" in

@@ -7,8 +7,8 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build}
-"$BUILD_DIR/examples/skyband" svf --demo
+"$BUILD_DIR/cli/skyband" svf --demo
 echo
-"$BUILD_DIR/examples/skyband" irradiance --demo --sun-altitude 35 --sun-azimuth 200
+"$BUILD_DIR/cli/skyband" irradiance --demo --sun-altitude 35 --sun-azimuth 200
 echo
-"$BUILD_DIR/examples/skyband" figures --out "${1:-figures}"
+"$BUILD_DIR/cli/skyband" figures --out "${1:-figures}"

@@ -8,6 +8,20 @@ scripts/install-deps.sh
 scripts/build.sh -DSKYBAND_WARNINGS_AS_ERRORS=ON
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build}
 (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)" --timeout 900)
+# The library as a user gets it: installed into a prefix, and examples/ configured on its own
+# against the installed package (find_package(skyband)), built and run on a closed-form case
+# (examples/CMakeLists.txt: the SVF under the middle of a square roof, 0.445873527).
+PREFIX="$BUILD_DIR/install-check"
+rm -rf "$PREFIX"
+cmake --install "$BUILD_DIR" --prefix "$PREFIX" >/dev/null
+EXAMPLES_DIR="$BUILD_DIR/examples-installed"
+GEN=()
+if [ ! -f "$EXAMPLES_DIR/CMakeCache.txt" ] && command -v ninja >/dev/null; then GEN=(-G Ninja); fi
+cmake -S examples -B "$EXAMPLES_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$(cd "$PREFIX" && pwd)" >/dev/null
+cmake --build "$EXAMPLES_DIR" -j "$(nproc)"
+"$EXAMPLES_DIR/svf_at_points" tests/data/meshes/canopy.obj 0,0,0 | grep -q '^0.000,0.000,0.000,0.445873527,0.666666630$' \
+  || { echo "svf_at_points built against the installed package gave a wrong SVF" >&2; exit 1; }
+echo "installed package: examples/svf_at_points built and checked"
 # The configuration without the suites (-DSKYBAND_BUILD_TESTS=OFF) must configure and link: the
 # benchmarks alone, in their own folder (the libraries' objects are ccache hits of the build above).
 NOTESTS_DIR=${SKYBAND_NOTESTS_BUILD_DIR:-build-notests}

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "cli/support/cli_runner.h"
-#include "geometry/scene.h"
+#include "geometry/mesh/scene.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"
 
@@ -282,7 +282,7 @@ BOOST_AUTO_TEST_CASE(facades_of_real_city_models, *skyband::test::needs_shared_d
     const std::vector<std::uint32_t> groups = model.extension() == ".obj" ? obj_groups(model) : std::vector<std::uint32_t>{};
     const std::size_t inside = points_inside_solids(rows, solids_of(soup, groups));
     // The OBJ's buildings that overlap a neighbour (the data README counts 89 crossing triangle
-    // pairs) are caught by the inside tests of geometry/facade_points.h.
+    // pairs) are caught by the inside tests of geometry/points/facade_points.h.
     BOOST_TEST(inside == 0u, model << ": " << inside << " of " << rows.size() << " points inside a building");
   }
 }

@@ -4,7 +4,7 @@
 // The band method's adaptive refinement (`--method bands --tolerance T`) holds T for the sky
 // exposure as well as the SVF, including where only a low skyline far away cuts the sky — open
 // ground beyond the edge of a city, terrain points — which its first sample lines pass over. The
-// reference is the exact union of the occluders' projections (geometry/exact_sky.h; checked
+// reference is the exact union of the occluders' projections (geometry/exact/exact_sky.h; checked
 // against the independent union oracle in exact_sky_test, and at the Delft point below against
 // the published 1M-ray and 4096-band values svf 0.99790, exposure 0.97433).
 
@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "geometry/sky_factors.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"

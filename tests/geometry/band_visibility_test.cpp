@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/band_visibility.h"
-#include "geometry/sky_integral.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sky_integral.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

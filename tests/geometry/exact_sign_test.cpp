@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/exact_sign.h"
+#include "geometry/core/exact_sign.h"
 
 using namespace skyband;
 

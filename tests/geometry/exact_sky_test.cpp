@@ -1,8 +1,8 @@
 #define BOOST_TEST_MODULE exact_sky
 #include <boost/test/unit_test.hpp>
 
-// The exact visible sky of any triangle soup (geometry/exact_sky.h, through the dispatcher
-// geometry/sky_visibility.h) against the independent exact union oracle of
+// The exact visible sky of any triangle soup (geometry/exact/exact_sky.h, through the dispatcher
+// geometry/visibility/sky_visibility.h) against the independent exact union oracle of
 // tests/geometry/support/lambert_oracle.h (Lambert's contour formula and Van Oosterom and
 // Strackee's solid angle over exact CGAL unions of the projected triangles on cube faces), on
 // random scenes of every kind a city model has: closed and open-bottom boxes, shared walls modelled
@@ -18,11 +18,11 @@
 #include <filesystem>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/exact_sky.h"
-#include "geometry/input_error.h"
-#include "geometry/sky_integral.h"
-#include "geometry/sky_visibility.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/exact/exact_sky.h"
+#include "geometry/core/input_error.h"
+#include "geometry/bands/sky_integral.h"
+#include "geometry/visibility/sky_visibility.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"

@@ -1,11 +1,11 @@
 #define BOOST_TEST_MODULE facade_points
 #include <boost/test/unit_test.hpp>
 
-// Facade points (geometry/facade_points.h) on hand-made boxes whose extents are multiples of the
+// Facade points (geometry/points/facade_points.h) on hand-made boxes whose extents are multiples of the
 // spacing, so that every count is a closed form: a W × H wall at spacing S holds (W/S)·(H/S)
 // cell centres, none on its border (centres sit at half-integers of S, the edges at integers).
 // Normals are compared exactly: the boxes are axis-aligned, so every normal is ±1 on one axis.
-// The segment–triangle predicate (geometry/segment_crossing.h) is checked on constructed cases.
+// The segment–triangle predicate (geometry/mesh/segment_crossing.h) is checked on constructed cases.
 
 #include <algorithm>
 #include <cmath>
@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/facade_points.h"
-#include "geometry/input_error.h"
-#include "geometry/scene.h"
-#include "geometry/segment_crossing.h"
+#include "geometry/points/facade_points.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/mesh/segment_crossing.h"
 
 using namespace skyband;
 

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE ground_grid
 #include <boost/test/unit_test.hpp>
 
-// The ground grid of `skyband points grid` (geometry/ground_grid.h): node positions on the
+// The ground grid of `skyband points grid` (geometry/points/ground_grid.h): node positions on the
 // S-aligned raster, points on the ground's surface, none inside, on or under a building, and the
 // counts of what was left out — each checked by counting cells of boxes whose extents are
 // multiples of the spacing (closed forms of the grid, no tolerance but the plane's height).
@@ -11,9 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "geometry/ground_grid.h"
-#include "geometry/input_error.h"
-#include "geometry/scene.h"
+#include "geometry/points/ground_grid.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/scene.h"
 
 using namespace skyband;
 

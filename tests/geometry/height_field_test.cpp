@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE height_field
 #include <boost/test/unit_test.hpp>
 
-// The height-field mesh of a DSM (geometry/height_field.h): its topology (one column solid, so
+// The height-field mesh of a DSM (geometry/mesh/height_field.h): its topology (one column solid, so
 // that pixel tops get the exact horizon method), and its sky view factors against the exact
 // union oracle of tests/geometry/support/lambert_oracle.h and a closed form.
 
@@ -9,11 +9,11 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/column_scene.h"
-#include "geometry/height_field.h"
-#include "geometry/input_error.h"
-#include "geometry/scene.h"
-#include "geometry/sky_factors.h"
+#include "geometry/horizon/column_scene.h"
+#include "geometry/mesh/height_field.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 

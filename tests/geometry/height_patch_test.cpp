@@ -1,4 +1,4 @@
-// Height patches (geometry/height_patch.h): which occluders are grouped, and the visible sky of
+// Height patches (geometry/exact/height_patch.h): which occluders are grouped, and the visible sky of
 // points around, over and under them against the exact union oracle (lambert_oracle.h) — the
 // patch's boundary projection claims only what its occluders hide, and skipping them where it is
 // their whole projection loses nothing.
@@ -8,10 +8,10 @@
 #include <cmath>
 #include <functional>
 
-#include "geometry/exact_sign.h"
-#include "geometry/exact_sky.h"
-#include "geometry/height_patch.h"
-#include "geometry/occluder_set.h"
+#include "geometry/core/exact_sign.h"
+#include "geometry/exact/exact_sky.h"
+#include "geometry/exact/height_patch.h"
+#include "geometry/exact/occluder_set.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 

@@ -1,4 +1,4 @@
-// HorizonEnvelope (geometry/horizon_envelope.h) against an independent brute force: the upper
+// HorizonEnvelope (geometry/horizon/horizon_envelope.h) against an independent brute force: the upper
 // envelope of the inserted arcs evaluated directly (the largest tan(elevation) of the arcs whose
 // azimuth range holds a direction, 0 for the horizon) at many azimuths. The exact-horizon tests
 // (horizon_svf_test) check the whole method against the exact Lambert oracle; these pin the
@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "geometry/horizon_envelope.h"
-#include "geometry/scene.h"
+#include "geometry/horizon/horizon_envelope.h"
+#include "geometry/mesh/scene.h"
 
 using namespace skyband;
 
@@ -40,7 +40,7 @@ double brute_force(const std::vector<Arc>& arcs, double t) {
 }
 
 // Random edges above the point (at the origin) at 5–200 m, up to 60 m high, inserted as the
-// envelope's caller does (geometry/horizon_svf.cpp): the great circle through the origin and the edge.
+// envelope's caller does (geometry/horizon/horizon_svf.cpp): the great circle through the origin and the edge.
 std::vector<Arc> insert_random_edges(HorizonEnvelope& env, int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> angle(0, 2 * kPi), dist(5, 200), height(0.5, 60), half_len(1, 40), turn(0, kPi);

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE horizon_real_meshes
 #include <boost/test/unit_test.hpp>
 
-// The exact horizon method (geometry/horizon_svf.h, column_scene.h) on the real building meshes
+// The exact horizon method (geometry/horizon/horizon_svf.h, column_scene.h) on the real building meshes
 // of ../shared/data/buildings (README.md there describes each file and its independently checked
 // defect counts, which several expectations below quote).
 //
@@ -27,11 +27,11 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/column_scene.h"
-#include "geometry/horizon_svf.h"
-#include "geometry/scene.h"
-#include "geometry/sky_factors.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/horizon/column_scene.h"
+#include "geometry/horizon/horizon_svf.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"

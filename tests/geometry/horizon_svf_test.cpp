@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE horizon_svf
 #include <boost/test/unit_test.hpp>
 
-// The exact horizon method (geometry/horizon_svf.h) and its validity test (column_scene.h)
+// The exact horizon method (geometry/horizon/horizon_svf.h) and its validity test (column_scene.h)
 // against the exact, independent oracles of tests/geometry/support/lambert_oracle.h (Lambert's
 // contour formula over exact 2D unions on the occluders' faces), the closed forms of
 // reference-notes §5, and the band method where the horizon method must refuse.
@@ -10,11 +10,11 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/column_scene.h"
-#include "geometry/horizon_svf.h"
-#include "geometry/sky_factors.h"
-#include "geometry/sky_integral.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/horizon/column_scene.h"
+#include "geometry/horizon/horizon_svf.h"
+#include "geometry/visibility/sky_factors.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 
@@ -323,7 +323,7 @@ BOOST_AUTO_TEST_CASE(city_points_threads_and_projected_coordinates) {
 }
 
 BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
-  // The fan's quadrature (geometry/sky_fan.h): under a uniform sky L = 1 it must give π·SVF (the
+  // The fan's quadrature (geometry/exact/sky_fan.h): under a uniform sky L = 1 it must give π·SVF (the
   // definition of the cosine-weighted SVF) to quadrature accuracy — 1e-5 relative at 0.2 rad, the
   // level of the band path's quadrature (docs/sky.md): an edge passing close to the point makes
   // the arc's elevation e₀(φ) nearly a step in azimuth (measured worst 3e-6); under a smooth non-uniform sky

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "geometry/mesh_defects.h"
+#include "geometry/mesh/mesh_defects.h"
 
 using namespace skyband;
 

@@ -1,4 +1,4 @@
-// xy_morton_order (geometry/point_order.h): a permutation, the Z curve on a grid (its closed form),
+// xy_morton_order (geometry/points/point_order.h): a permutation, the Z curve on a grid (its closed form),
 // and ties in input order.
 #define BOOST_TEST_MODULE point_order
 #include <boost/test/unit_test.hpp>
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/point_order.h"
+#include "geometry/points/point_order.h"
 
 using namespace skyband;
 

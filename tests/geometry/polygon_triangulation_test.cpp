@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "geometry/polygon_triangulation.h"
+#include "geometry/mesh/polygon_triangulation.h"
 
 using namespace skyband;
 namespace tt = boost::test_tools;

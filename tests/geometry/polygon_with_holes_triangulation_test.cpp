@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "geometry/polygon_with_holes_triangulation.h"
+#include "geometry/mesh/polygon_with_holes_triangulation.h"
 
 using namespace skyband;
 namespace tt = boost::test_tools;

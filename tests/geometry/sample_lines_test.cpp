@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE sample_lines
 #include <boost/test/unit_test.hpp>
 
-// The exact visible sky cut along band sample lines (geometry/sample_lines.h) against an
+// The exact visible sky cut along band sample lines (geometry/bands/sample_lines.h) against an
 // independent exact computation of the same lines: the band method's own sample-plane
 // intersection with every triangle (BandVisibility::visible_on_plane, exact predicates, no
 // culling near the pencil axis). Also the doubling of the band count against the region's exact
@@ -11,10 +11,10 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/sample_lines.h"
-#include "geometry/sky_integral.h"
-#include "geometry/sky_visibility.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sample_lines.h"
+#include "geometry/bands/sky_integral.h"
+#include "geometry/visibility/sky_visibility.h"
 #include "geometry/support/scene_generators.h"
 
 using namespace skyband;

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "geometry/scene.h"
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

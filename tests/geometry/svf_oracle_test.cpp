@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE svf_oracle
 #include <boost/test/unit_test.hpp>
 
-// The band-visibility core (geometry/band_visibility.h + sky_integral.h) against the exact,
+// The band-visibility core (geometry/bands/band_visibility.h + sky_integral.h) against the exact,
 // independent oracles of tests/geometry/support/lambert_oracle.h (Lambert's contour formula,
 // exact 2D unions on cube faces) and the closed forms of reference-notes §5.
 
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/sky_integral.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <random>
 
-#include "geometry/band_visibility.h"
-#include "geometry/input_error.h"
-#include "geometry/sky_integral.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/core/input_error.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/citygml_reader.h"
 #include "io/mesh_reader.h"
-#include "lighting/climate_irradiation.h"
+#include "lighting/climate/climate_irradiation.h"
 #include "shared_data.h"
 
 using namespace skyband;

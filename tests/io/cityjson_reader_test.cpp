@@ -16,8 +16,8 @@
 #include <string>
 #include <tuple>
 
-#include "geometry/input_error.h"
-#include "geometry/mesh_defects.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/mesh_defects.h"
 #include "io/cityjson_reader.h"
 #include "shared_data.h"
 

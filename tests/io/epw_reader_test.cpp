@@ -9,9 +9,9 @@
 #include <unistd.h>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/epw_reader.h"
-#include "lighting/weather_series.h"
+#include "lighting/climate/weather_series.h"
 #include "shared_data.h"
 
 using namespace skyband;

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/exr_writer.h"
 
 namespace tt = boost::test_tools;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/geo_raster.h"
 
 using namespace skyband;

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"
 

@@ -7,7 +7,7 @@
 #include <iterator>
 #include <unistd.h>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/points_csv.h"
 #include "shared_data.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/scene_file.h"
 #include "io/toml_ascii.h"
 #include "shared_data.h"

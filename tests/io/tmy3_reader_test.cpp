@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/input_error.h"
+#include "geometry/core/input_error.h"
 #include "io/epw_reader.h"
 #include "io/tmy3_reader.h"
 #include "io/support/tmy3_csv.h"

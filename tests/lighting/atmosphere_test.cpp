@@ -9,12 +9,12 @@
 
 #include <Eigen/Geometry>
 
-#include "geometry/input_error.h"
-#include "geometry/vec3.h"
-#include "lighting/atmosphere.h"
-#include "lighting/colour.h"
-#include "lighting/phase_functions.h"
-#include "lighting/sun.h"
+#include "geometry/core/input_error.h"
+#include "geometry/core/vec3.h"
+#include "lighting/atmosphere/atmosphere.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/atmosphere/phase_functions.h"
+#include "lighting/sun/sun.h"
 #include "shared_data.h"
 
 namespace tt = boost::test_tools;
@@ -211,7 +211,7 @@ BOOST_AUTO_TEST_CASE(horizon_and_sun_disc) {
 // At 4° Kasten–Young gives 12.30 and the plane-parallel sec z gives 14.3: the straight-ray
 // spherical value (measured 12.04) must lie within 3% of the first and far from the second.
 // The 2.1% shortfall is refraction: Kasten–Young fits rays bent down into denser air, which
-// skyband does not trace (lighting/sun.h).
+// skyband does not trace (lighting/sun/sun.h).
 BOOST_AUTO_TEST_CASE(near_horizon_air_mass) {
   const Atmosphere atm(AtmosphereParams{});
   const double rg = atm.observer_radius_m();
@@ -225,7 +225,7 @@ BOOST_AUTO_TEST_CASE(near_horizon_air_mass) {
   BOOST_TEST(1.0 / std::sin(deg(4)) > 1.1 * m4);
 }
 
-// Sun colour falls monotonically with altitude (CCT by Robertson, lighting/colour.h) and lies in
+// Sun colour falls monotonically with altitude (CCT by Robertson, lighting/spectrum/colour.h) and lies in
 // the plausibility bands of reference-notes §3.2 (model β = 0.05, close to our default
 // aod550 0.1, α 1.3 → Ångström β = 0.1·0.55^1.3 = 0.046): CCT 4310 K at 17°, 5230 K at 60° within
 // ±8% (the notes' model uses Kasten–Young air mass and the full-resolution G173 ETR), and

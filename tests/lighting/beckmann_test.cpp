@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "lighting/beckmann.h"
+#include "lighting/brdf/beckmann.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "geometry/input_error.h"
-#include "lighting/cie_sky.h"
-#include "lighting/colour.h"
+#include "geometry/core/input_error.h"
+#include "lighting/sky/cie_sky.h"
+#include "lighting/spectrum/colour.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE climate_irradiation
 #include <boost/test/unit_test.hpp>
 
-// Irradiation over a real weather file (lighting/climate_irradiation.h) on the shared EPW files
+// Irradiation over a real weather file (lighting/climate/climate_irradiation.h) on the shared EPW files
 // (../shared/data/weather): unobstructed planes against sums over the file's own columns and
 // against an independent transposition model (pvlib's Perez 1990 with the isotropic ground, test
 // support), the ground view factor against closed forms, an obstructed face, and thread
@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "geometry/input_error.h"
-#include "geometry/scene.h"
+#include "geometry/core/input_error.h"
+#include "geometry/mesh/scene.h"
 #include "io/epw_reader.h"
-#include "lighting/climate_irradiation.h"
-#include "lighting/perez_sky.h"
-#include "lighting/weather_hours.h"
+#include "lighting/climate/climate_irradiation.h"
+#include "lighting/sky/perez_sky.h"
+#include "lighting/climate/weather_hours.h"
 #include "lighting/support/perez_transposition.h"
 #include "shared_data.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "lighting/colour.h"
+#include "lighting/spectrum/colour.h"
 #include "shared_data.h"
 
 namespace tt = boost::test_tools;

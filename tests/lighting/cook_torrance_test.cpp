@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "lighting/beckmann.h"
-#include "lighting/cook_torrance.h"
+#include "lighting/brdf/beckmann.h"
+#include "lighting/brdf/cook_torrance.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -1,9 +1,9 @@
 #define BOOST_TEST_MODULE daylight_coefficients
 #include <boost/test/unit_test.hpp>
 
-// Daylight coefficients (lighting/daylight_coefficients.h) against closed forms: under a uniform
+// Daylight coefficients (lighting/integrals/daylight_coefficients.h) against closed forms: under a uniform
 // sky of radiance 1 the coefficients sum to π·SVF (Lambert), the SVF being the exact region's
-// (geometry/visible_sky.h, checked against an exact oracle elsewhere); under a sky linear in the
+// (geometry/visibility/visible_sky.h, checked against an exact oracle elsewhere); under a sky linear in the
 // direction's height, L = ω_z, an open horizontal face receives ∫ ω_z cos θ dω = 2π/3. The grid's
 // hat functions are integrated to second order at their kinks: the bounds are the measured
 // accuracy with margin.
@@ -12,9 +12,9 @@
 #include <numeric>
 #include <vector>
 
-#include "geometry/scene.h"
-#include "geometry/sky_visibility.h"
-#include "lighting/daylight_coefficients.h"
+#include "geometry/mesh/scene.h"
+#include "geometry/visibility/sky_visibility.h"
+#include "lighting/integrals/daylight_coefficients.h"
 
 using namespace skyband;
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "lighting/beckmann.h"
-#include "lighting/cook_torrance.h"
-#include "lighting/fast_exp.h"
+#include "lighting/brdf/beckmann.h"
+#include "lighting/brdf/cook_torrance.h"
+#include "lighting/integrals/fast_exp.h"
 
 using namespace skyband;
 

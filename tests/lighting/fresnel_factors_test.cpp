@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "lighting/fresnel.h"
-#include "lighting/fresnel_factors.h"
-#include "lighting/material.h"
+#include "lighting/brdf/fresnel.h"
+#include "lighting/brdf/fresnel_factors.h"
+#include "lighting/brdf/material.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

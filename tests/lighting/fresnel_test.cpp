@@ -4,8 +4,8 @@
 #include <cmath>
 #include <complex>
 
-#include "geometry/vec3.h"
-#include "lighting/fresnel.h"
+#include "geometry/core/vec3.h"
+#include "lighting/brdf/fresnel.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -5,10 +5,10 @@
 #include <complex>
 #include <string>
 
-#include "geometry/input_error.h"
-#include "lighting/fresnel.h"
-#include "lighting/material.h"
-#include "lighting/sun_shading.h"
+#include "geometry/core/input_error.h"
+#include "lighting/brdf/fresnel.h"
+#include "lighting/brdf/material.h"
+#include "lighting/sun/sun_shading.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -1,7 +1,7 @@
 #define BOOST_TEST_MODULE moment_series
 #include <boost/test/unit_test.hpp>
 
-// Generated moments (lighting/moment_series.h): counts and weights from the calendar, daylight
+// Generated moments (lighting/climate/moment_series.h): counts and weights from the calendar, daylight
 // saving changes from the IANA tz database (EU rule: last Sunday of March 01:00 UTC, last Sunday
 // of October 01:00 UTC; Directive 2000/84/EC), fixed offsets, and every bad input named.
 
@@ -9,8 +9,8 @@
 #include <numeric>
 #include <string>
 
-#include "geometry/input_error.h"
-#include "lighting/moment_series.h"
+#include "geometry/core/input_error.h"
+#include "lighting/climate/moment_series.h"
 
 using namespace skyband;
 

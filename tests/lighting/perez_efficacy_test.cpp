@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/input_error.h"
-#include "lighting/perez_efficacy.h"
+#include "geometry/core/input_error.h"
+#include "lighting/sky/perez_efficacy.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

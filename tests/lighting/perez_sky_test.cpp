@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "geometry/input_error.h"
-#include "lighting/perez_sky.h"
-#include "lighting/sun_position.h"
+#include "geometry/core/input_error.h"
+#include "lighting/sky/perez_sky.h"
+#include "lighting/sun/sun_position.h"
 #include "lighting/support/perez_transposition.h"
 #include "shared_data.h"
 

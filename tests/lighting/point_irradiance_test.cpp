@@ -4,11 +4,11 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/input_error.h"
-#include "geometry/sky_integral.h"
-#include "lighting/colour.h"
-#include "lighting/point_irradiance.h"
-#include "lighting/sun.h"
+#include "geometry/core/input_error.h"
+#include "geometry/bands/sky_integral.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/integrals/point_irradiance.h"
+#include "lighting/sun/sun.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;
@@ -78,7 +78,7 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
   // sky_ratio: exactly 1 on the open horizontal face (same method, same quadrature); far away the
   // exact horizon sees the cube as a sliver (~1e-9 of the sky), and its fan, cut there, is
   // integrated by different Gauss–Legendre pieces: 1 within the quadrature's error (~1e-6, see
-  // geometry/sky_fan.h). On the open wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
+  // geometry/exact/sky_fan.h). On the open wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
   // unobstructed window that BRE 209 (Littlefair, Site layout planning for daylight and
   // sunlight, 2nd ed. 2011, §2.2) publishes.
   BOOST_TEST(r[0].sky_ratio == 1.0, tt::tolerance(1e-12));
@@ -99,7 +99,7 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
 // hemisphere, not by the point's share of it): a constant is interpolated exactly by the grid.
 // Band method: the Gauss–Legendre pieces integrate sin²α to ~1e-13; what remains is the grid's
 // float storage (~6e-8 relative) and the interval ends stored as float. Exact horizon: the SVF
-// is exact, the fan's quadrature within ~3e-6 relative (geometry/sky_fan.h) — here at most
+// is exact, the fan's quadrature within ~3e-6 relative (geometry/exact/sky_fan.h) — here at most
 // 1.2e-6 of π·L_z (1.0e-4 W·m⁻² at a point of SVF 0.041, 2.8e-5 of its own value).
 BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
   const RandomBlock block = random_block(5, 12, 60, 40, 70);

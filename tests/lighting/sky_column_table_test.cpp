@@ -1,21 +1,21 @@
 #define BOOST_TEST_MODULE sky_column_table
 #include <boost/test/unit_test.hpp>
 
-// The per-sky column tables (lighting/sky_column_table.h) against two independent computations:
+// The per-sky column tables (lighting/integrals/sky_column_table.h) against two independent computations:
 // the definition of the cosine-weighted SVF under a uniform sky (E = π·L·SVF, with the exact
 // horizon's closed-form SVF), and the two-dimensional Gauss–Legendre quadrature over the same fan
-// (geometry/sky_fan.h: integrate_fan_channels, which looks the sky grid up directly) under a
+// (geometry/exact/sky_fan.h: integrate_fan_channels, which looks the sky grid up directly) under a
 // physical sky with its aureole.
 
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include "geometry/horizon_svf.h"
-#include "geometry/triangle_soup.h"
-#include "lighting/sky_column_table.h"
-#include "lighting/sky_model.h"
-#include "lighting/sun.h"
+#include "geometry/horizon/horizon_svf.h"
+#include "geometry/mesh/triangle_soup.h"
+#include "lighting/integrals/sky_column_table.h"
+#include "lighting/sky/sky_model.h"
+#include "lighting/sun/sun.h"
 
 using namespace skyband;
 
@@ -62,7 +62,7 @@ BOOST_AUTO_TEST_CASE(uniform_sky_gives_pi_times_svf) {
     table.integrate_fan(fan, q.normal, e, 0.05);
     // Channel 0 is Σ_λ 1 = 41 per sr, channel 1 is 1 per sr. Tolerance 1e-5 relative: the tables'
     // bilinear interpolation in elevation (0.25° cells: ~Δe²/8·|S''| ≈ 2e-6) and the azimuth
-    // quadrature of steep arcs (geometry/sky_fan.h).
+    // quadrature of steep arcs (geometry/exact/sky_fan.h).
     BOOST_TEST(std::abs(e[0] - 41 * kPi * f.svf) < 1e-5 * 41 * kPi, "e0 " << e[0] << " svf " << f.svf);
     BOOST_TEST(std::abs(e[1] - kPi * f.svf) < 1e-5 * kPi);
   }

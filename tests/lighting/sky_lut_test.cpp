@@ -5,9 +5,9 @@
 #include <thread>
 #include <vector>
 
-#include "geometry/input_error.h"
-#include "geometry/sky_integral.h"
-#include "lighting/sky_lut.h"
+#include "geometry/core/input_error.h"
+#include "geometry/bands/sky_integral.h"
+#include "lighting/integrals/sky_lut.h"
 #include "lighting/support/hand_cache.h"
 
 namespace tt = boost::test_tools;
@@ -111,7 +111,7 @@ BOOST_AUTO_TEST_CASE(open_wall) {
 }
 
 // Occluded intervals and an anisotropic coloured sky: the table sum must equal an independent
-// direct quadrature over the same cache (geometry/sky_integral.h integrate_irradiance, GL on
+// direct quadrature over the same cache (geometry/bands/sky_integral.h integrate_irradiance, GL on
 // pieces ≤ 0.01 rad) channel by channel. Both integrate the same band-centre approximation, so
 // only the table's interpolation (~1e-5 relative here) separates them: tolerance 1e-4.
 BOOST_AUTO_TEST_CASE(occluded_coloured_sky_matches_direct_quadrature) {

@@ -4,10 +4,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "geometry/input_error.h"
-#include "lighting/colour.h"
-#include "lighting/sky_model.h"
-#include "lighting/sun.h"
+#include "geometry/core/input_error.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/sky/sky_model.h"
+#include "lighting/sun/sun.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

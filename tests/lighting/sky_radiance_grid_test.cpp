@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lighting/colour.h"
-#include "lighting/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/sky/sky_radiance_grid.h"
 #include "lighting/support/analytic_sky.h"
 
 namespace tt = boost::test_tools;

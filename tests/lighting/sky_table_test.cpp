@@ -6,11 +6,11 @@
 #include <random>
 #include <vector>
 
-#include "geometry/vec3.h"
-#include "lighting/atmosphere.h"
-#include "lighting/phase_functions.h"
-#include "lighting/sky_table.h"
-#include "lighting/sun.h"
+#include "geometry/core/vec3.h"
+#include "lighting/atmosphere/atmosphere.h"
+#include "lighting/atmosphere/phase_functions.h"
+#include "lighting/atmosphere/sky_table.h"
+#include "lighting/sun/sun.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

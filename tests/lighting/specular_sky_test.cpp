@@ -4,10 +4,10 @@
 #include <cmath>
 #include <vector>
 
-#include "lighting/cook_torrance.h"
-#include "lighting/fresnel.h"
-#include "lighting/material.h"
-#include "lighting/specular_sky.h"
+#include "lighting/brdf/cook_torrance.h"
+#include "lighting/brdf/fresnel.h"
+#include "lighting/brdf/material.h"
+#include "lighting/integrals/specular_sky.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 

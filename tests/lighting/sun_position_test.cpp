@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/input_error.h"
-#include "lighting/sun_position.h"
+#include "geometry/core/input_error.h"
+#include "lighting/sun/sun_position.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;

@@ -10,10 +10,10 @@
 #include <string>
 #include <unistd.h>
 
-#include "geometry/vec3.h"
+#include "geometry/core/vec3.h"
 #include "io/epw_reader.h"
-#include "lighting/weather_series.h"
-#include "lighting/weather_timing.h"
+#include "lighting/climate/weather_series.h"
+#include "lighting/climate/weather_timing.h"
 #include "shared_data.h"
 
 using namespace skyband;

@@ -23,8 +23,8 @@
 #include <span>
 #include <vector>
 
-#include "geometry/triangle_soup.h"
-#include "geometry/vec3.h"
+#include "geometry/mesh/triangle_soup.h"
+#include "geometry/core/vec3.h"
 
 namespace skyband::oracle {
 

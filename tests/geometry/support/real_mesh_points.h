@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/scene.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/mesh/scene.h"
 
 namespace skyband::gen {
 

@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "geometry/band_visibility.h"
-#include "geometry/height_field.h"
+#include "geometry/bands/band_visibility.h"
+#include "geometry/mesh/height_field.h"
 #include "geometry/support/lambert_oracle.h"
-#include "geometry/triangle_soup.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband::gen {
 

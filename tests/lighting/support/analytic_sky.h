@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/vec3.h"
-#include "lighting/spectrum.h"
+#include "geometry/core/vec3.h"
+#include "lighting/spectrum/spectrum.h"
 
 namespace skyband::test {
 

@@ -1,13 +1,13 @@
 #pragma once
 // Visibility caches built by hand for lighting tests (no geometry): a point with a given normal,
-// N equal-weight bands (geometry/band_frame.h), and per band the visible α-intervals returned by
+// N equal-weight bands (geometry/bands/band_frame.h), and per band the visible α-intervals returned by
 // a callback (default: the whole sample line [0, π], an unobstructed sky).
 #include <functional>
 #include <utility>
 #include <vector>
 
-#include "geometry/band_frame.h"
-#include "geometry/visibility_cache.h"
+#include "geometry/bands/band_frame.h"
+#include "geometry/bands/visibility_cache.h"
 
 namespace skyband::test {
 

@@ -13,7 +13,7 @@
 //   sky diffuse = max(0, isotropic + circumsolar + horizon).
 // β the surface tilt. Angles in degrees; azimuths clockwise from north (180 = south); Z the
 // (apparent) sun zenith as passed to pvlib. It is a different model from the Perez 1993 sky
-// (lighting/perez_sky.h): the tests compare the two, they do not expect equality.
+// (lighting/sky/perez_sky.h): the tests compare the two, they do not expect equality.
 namespace skyband::test {
 
 struct Perez1990Diffuse {

@@ -1,0 +1,396 @@
+#include "geometry/horizon/column_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <tuple>
+#include <vector>
+
+#include "geometry/core/disjoint_sets.h"
+#include "geometry/core/exact_sign.h"
+#include "geometry/mesh/grouped_bvh.h"
+#include "geometry/mesh/welding.h"
+
+namespace skyband {
+
+namespace {
+
+struct DirectedEdge {
+  std::uint32_t lo, hi;  // welded ids, lo < hi
+  bool forward;          // traversed lo → hi
+  std::uint32_t component;
+  std::uint32_t triangle;
+  std::uint8_t side;     // k: the side v_k → v_{k+1}
+};
+
+// For coplanar a, b, c, d: are c and d strictly on opposite sides of line ab? Exact, in the
+// coordinate plane the points' plane projects onto without collapsing.
+bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 n = (b - a).cross(c - a);
+  int drop = 2;  // the axis along the normal's largest component
+  if (std::abs(n.x()) >= std::abs(n.y()) && std::abs(n.x()) >= std::abs(n.z())) drop = 0;
+  else if (std::abs(n.y()) >= std::abs(n.z())) drop = 1;
+  const auto proj = [drop](const Vec3& v) {
+    return drop == 0 ? Vec3(v.y(), v.z(), 0) : drop == 1 ? Vec3(v.z(), v.x(), 0) : Vec3(v.x(), v.y(), 0);
+  };
+  const int sc = exact_orient2d_sign(proj(a), proj(b), proj(c)), sd = exact_orient2d_sign(proj(a), proj(b), proj(d));
+  return sc * sd < 0;
+}
+
+struct Candidate {
+  SilhouetteEdge edge;
+  std::array<Vec3, 2> c;  // the faces' third vertices
+};
+
+// BVH over the edges (geometry/mesh/grouped_bvh.h): leaves hold ≤ 4 edges of one solid, so a leaf's
+// box is (part of) one building's; `edges` is reordered into leaf order.
+void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, const std::vector<std::uint32_t>& edge_solid) {
+  std::vector<Aabb> boxes(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    boxes[i].extend(edges[i].edge.a);
+    boxes[i].extend(edges[i].edge.b);
+  }
+  const std::vector<std::uint32_t> order =
+      build_grouped_bvh(boxes, edge_solid, 4, 4, out.edge_nodes, [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
+  std::vector<Candidate> sorted(edges.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = edges[order[k]];
+  edges.swap(sorted);
+}
+
+// Median-split BVH over triangles (their boxes' centres, longest axis; leaves of ≤ 4);
+// `triangles` is reordered into leaf order. Deterministic.
+void build_triangle_bvh(const TriangleSoup& soup, std::vector<std::uint32_t>& triangles, std::vector<EdgeBvhNode>& nodes) {
+  nodes.clear();
+  if (triangles.empty()) return;
+  const auto box_of = [&](std::uint32_t t) {
+    Aabb b;
+    for (std::uint32_t v : soup.triangles[t]) b.extend(soup.vertices[v]);
+    return b;
+  };
+  struct Task {
+    std::uint32_t node, first, count;
+  };
+  nodes.push_back({});
+  std::vector<Task> stack{{0, 0, std::uint32_t(triangles.size())}};
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    Aabb box, centres;
+    for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
+      const Aabb b = box_of(triangles[i]);
+      box.extend(b);
+      centres.extend(b.centre());
+    }
+    nodes[task.node].box = box;
+    if (task.count <= 4) {
+      nodes[task.node].first = task.first;
+      nodes[task.node].count = task.count;
+      continue;
+    }
+    const Vec3 e = centres.hi - centres.lo;
+    const int axis = e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
+    const std::uint32_t half = task.count / 2;
+    auto begin = triangles.begin() + task.first;
+    std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t x, std::uint32_t y) {
+      const double cx = box_of(x).centre()[axis], cy = box_of(y).centre()[axis];
+      return cx != cy ? cx < cy : x < y;
+    });
+    const std::uint32_t left = std::uint32_t(nodes.size());
+    nodes.push_back({});
+    nodes.push_back({});
+    nodes[task.node].first = left;
+    nodes[task.node].count = 0;
+    stack.push_back({left + 1, task.first + half, task.count - half});
+    stack.push_back({left, task.first, half});
+  }
+}
+
+}  // namespace
+
+ColumnScene classify_column_scene(const TriangleSoup& soup) {
+  ColumnScene out;
+  const std::size_t nt = soup.triangles.size();
+  if (nt == 0) return out;
+  const std::vector<std::uint32_t> wid = weld_positions(soup.vertices);
+
+  // Triangles sharing a welded vertex belong to one component.
+  DisjointSets comp(nt);
+  {
+    std::vector<std::uint32_t> first_triangle(soup.vertices.size(), UINT32_MAX);
+    for (std::uint32_t t = 0; t < nt; ++t)
+      for (std::uint32_t vi : soup.triangles[t]) {
+        std::uint32_t& f = first_triangle[wid[vi]];
+        if (f == UINT32_MAX) f = t;
+        else comp.unite(f, t);
+      }
+  }
+  std::vector<std::uint32_t> root(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) root[t] = comp.find(t);
+
+  struct ComponentState {
+    bool closed_ok = true;
+    double z_min = 1e300;
+    Vec3 reference;
+    bool has_reference = false;
+  };
+  std::vector<ComponentState> state(nt);  // indexed by root triangle
+  std::vector<DirectedEdge> edges;
+  edges.reserve(3 * nt);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    ComponentState& s = state[root[t]];
+    const auto& tri = soup.triangles[t];
+    const std::array<std::uint32_t, 3> w{wid[tri[0]], wid[tri[1]], wid[tri[2]]};
+    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) s.closed_ok = false;
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    if (!s.has_reference) {
+      s.reference = a;
+      s.has_reference = true;
+    }
+    s.z_min = std::min({s.z_min, a.z(), b.z(), c.z()});
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t p = w[k], q = w[(k + 1) % 3];
+      if (p != q) edges.push_back({std::min(p, q), std::max(p, q), p < q, root[t], t, std::uint8_t(k)});
+    }
+  }
+  // Closed and orientable: every undirected edge exactly twice — or once, when both its ends lie
+  // in the component's floor plane (a floor left open: buildings modelled as walls and a roof
+  // standing on the ground). The files' windings need not agree: each triangle gets a flip bit
+  // that makes the two triangles of every edge traverse it in opposite directions (a walk over the
+  // edges), and a component where no such bits exist is not a column solid.
+  std::sort(edges.begin(), edges.end(),
+            [](const DirectedEdge& x, const DirectedEdge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
+  std::vector<std::uint32_t> adjacency_start(nt + 1, 0);
+  std::vector<std::pair<std::uint32_t, bool>> adjacency;  // (neighbour, the two must differ in flip)
+  // Vertical edges used by 4, 6, ... triangles: where columns meet along a vertical line only
+  // (height-field pixels touching diagonally, buildings touching at a corner). They link no
+  // orientation; once every triangle is oriented they must be balanced (as many traversals up as
+  // down), which keeps the surface a closed oriented cycle. Ranges [first, last) into `edges`.
+  std::vector<std::pair<std::size_t, std::size_t>> multi_edges;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    const DirectedEdge& e = edges[i];
+    bool ok = j - i == 2;
+    if (j - i > 2 && (j - i) % 2 == 0) {
+      const auto& te = soup.triangles[e.triangle];
+      const Vec3 &p = soup.vertices[te[e.side]], &q = soup.vertices[te[(e.side + 1) % 3]];
+      ok = p.x() == q.x() && p.y() == q.y();
+      if (ok) multi_edges.emplace_back(i, j);
+    } else if (j - i == 1) {
+      const auto& te = soup.triangles[e.triangle];
+      const double zf = state[e.component].z_min;
+      ok = soup.vertices[te[e.side]].z() == zf && soup.vertices[te[(e.side + 1) % 3]].z() == zf;
+    } else if (ok) {
+      ++adjacency_start[edges[i].triangle + 1];
+      ++adjacency_start[edges[i + 1].triangle + 1];
+    }
+    if (!ok) state[e.component].closed_ok = false;
+    i = j;
+  }
+  for (std::size_t t = 0; t < nt; ++t) adjacency_start[t + 1] += adjacency_start[t];
+  adjacency.resize(adjacency_start[nt]);
+  {
+    std::vector<std::uint32_t> fill(adjacency_start.begin(), adjacency_start.end() - 1);
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+      if (j - i == 2) {
+        const DirectedEdge &e = edges[i], &f = edges[i + 1];
+        const bool differ = e.forward == f.forward;  // same direction: one of the two must flip
+        adjacency[fill[e.triangle]++] = {f.triangle, differ};
+        adjacency[fill[f.triangle]++] = {e.triangle, differ};
+      }
+      i = j;
+    }
+  }
+  // Orientation regions: the triangles one walk over shared edges reaches. A component is
+  // usually one region; columns touching only along vertical lines or at vertices give several,
+  // each oriented (made outward) on its own.
+  std::vector<std::int8_t> flip(nt, -1);
+  std::vector<std::uint32_t> region(nt, UINT32_MAX);
+  std::uint32_t regions = 0;
+  {
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t t0 = 0; t0 < nt; ++t0) {
+      if (flip[t0] >= 0 || !state[root[t0]].closed_ok) continue;
+      flip[t0] = 0;
+      region[t0] = regions++;
+      queue.assign(1, t0);
+      while (!queue.empty()) {
+        const std::uint32_t t = queue.back();
+        queue.pop_back();
+        for (std::uint32_t k = adjacency_start[t]; k < adjacency_start[t + 1]; ++k) {
+          const auto [u, differ] = adjacency[k];
+          const std::int8_t want = std::int8_t(flip[t] ^ (differ ? 1 : 0));
+          if (flip[u] < 0) {
+            flip[u] = want;
+            region[u] = region[t];
+            queue.push_back(u);
+          } else if (flip[u] != want) {
+            state[root[t]].closed_ok = false;  // not orientable
+          }
+        }
+      }
+    }
+  }
+  const auto winding = [&](std::uint32_t t) { return flip[t] == 1 ? -1 : 1; };
+  // The signed volume of each region relative to a point of its component's floor plane
+  // z = z_min: for a surface closed but for a floor left open (boundary edges in that plane), the
+  // volume of the solid capped there — a cap in the plane adds nothing relative to a point in it.
+  // A region is closed by itself (every paired edge joins two of its own triangles; multi-edges
+  // must be balanced within each region, below), so its volume does not depend on the reference
+  // point.
+  std::vector<double> region_volume6(regions, 0.0);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    if (region[t] == UINT32_MAX) continue;
+    const ComponentState& s = state[root[t]];
+    const auto& tri = soup.triangles[t];
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    const Vec3 r(s.reference.x(), s.reference.y(), s.z_min);
+    region_volume6[region[t]] += winding(t) * (a - r).dot((b - r).cross(c - r));
+  }
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (region[t] != UINT32_MAX && region_volume6[region[t]] == 0) state[root[t]].closed_ok = false;
+  // +1 where the oriented winding of t is outward.
+  const auto outward = [&](std::uint32_t t) { return winding(t) * (region_volume6[region[t]] > 0 ? 1 : -1); };
+  // Multi-edges: balanced within each region once oriented outward (so that every region is a
+  // closed oriented surface by itself).
+  for (const auto& [first, last] : multi_edges) {
+    const DirectedEdge& e = edges[first];
+    if (!state[e.component].closed_ok) continue;
+    for (std::size_t k = first; k < last; ++k) {
+      int balance = 0;
+      for (std::size_t m = first; m < last; ++m)
+        if (region[edges[m].triangle] == region[edges[k].triangle])
+          balance += (edges[m].forward ? 1 : -1) * outward(edges[m].triangle);
+      if (balance != 0) state[e.component].closed_ok = false;
+    }
+  }
+
+  // Down-facing triangles (outward normal below the horizontal) must lie in the floor plane.
+  std::vector<char> column(nt, 0);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (root[t] == t) column[t] = state[t].closed_ok;
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t r = root[t];
+    if (!column[r]) continue;
+    const auto& tri = soup.triangles[t];
+    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
+    const int up = exact_orient2d_sign(a, b, c) * outward(t);
+    const double zf = state[r].z_min;
+    if (up < 0 && !(a.z() == zf && b.z() == zf && c.z() == zf)) column[r] = 0;
+  }
+
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t r = root[t];
+    if (r == t) {
+      if (column[r]) {
+        ++out.column_solids;
+        out.max_column_floor_z = std::max(out.max_column_floor_z, state[r].z_min);
+        out.min_column_floor_z = std::min(out.min_column_floor_z, state[r].z_min);
+      } else {
+        ++out.other_components;
+      }
+    }
+    if (!column[r])
+      for (std::uint32_t vi : soup.triangles[t]) out.max_other_z = std::max(out.max_other_z, soup.vertices[vi].z());
+  }
+
+  // Silhouette candidates (the two triangles of each edge of a closed column solid are
+  // consecutive after the sort).
+  std::vector<std::uint32_t> edge_solid;
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const DirectedEdge &e = edges[i], &f = edges[i + 1];
+    if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
+    ++i;
+    if (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) {  // a vertical multi-edge
+      while (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) ++i;
+      continue;
+    }
+    const auto& te = soup.triangles[e.triangle];
+    const auto& tf = soup.triangles[f.triangle];
+    Candidate candidate;
+    SilhouetteEdge& s = candidate.edge;
+    std::array<Vec3, 2>& c3 = candidate.c;
+    // Ends by welded id: e traverses v_side → v_side+1; forward means lo → hi.
+    const Vec3& e0 = soup.vertices[te[e.side]];
+    const Vec3& e1 = soup.vertices[te[(e.side + 1) % 3]];
+    s.a = e.forward ? e0 : e1;
+    s.b = e.forward ? e1 : e0;
+    if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
+    if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
+    s.floor_z = state[e.component].z_min;
+    c3[0] = soup.vertices[te[(e.side + 2) % 3]];
+    c3[1] = soup.vertices[tf[(f.side + 2) % 3]];
+    // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):
+    // never a silhouette. (Coplanar on the same side is a zero-thickness fin: kept.)
+    if (exact_orientation(s.a, s.b, c3[0], c3[1]) == 0 && opposite_sides_in_plane(s.a, s.b, c3[0], c3[1])) continue;
+    // det[a − p, b − p, c − p] is the triangle's orientation when (a, b, c) follows its winding
+    // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
+    // winding normal's side; the outward sign turns that into "front-facing".
+    // (Both faces are in one region: a paired edge links them.)
+    const int out_sign = region_volume6[region[e.triangle]] > 0 ? 1 : -1;
+    const bool e_forward = e.forward != (flip[e.triangle] == 1), f_forward = f.forward != (flip[f.triangle] == 1);
+    s.facing_sign[0] = std::int8_t(-out_sign * (e_forward ? 1 : -1));
+    s.facing_sign[1] = std::int8_t(-out_sign * (f_forward ? 1 : -1));
+    for (int k = 0; k < 2; ++k) {
+      const Vec3& c = c3[k];
+      s.face_kind[k] = SilhouetteEdge::kGeneral;
+      s.kind_sign[k] = 0;
+      const int o2 = exact_orient2d_sign(s.a, s.b, c);
+      if (s.a.z() == s.b.z() && s.b.z() == c.z() && o2 != 0) {
+        // det[a − p, b − p, c − p] = n·(a − p), n = (b − a) × (c − a) = (0, 0, orient2d(a, b, c)).
+        s.face_kind[k] = SilhouetteEdge::kHorizontal;
+        s.kind_sign[k] = std::int8_t(o2);
+      } else if (o2 == 0) {
+        // A vertical plane: det[a − p, b − p, c − p] is linear in p and vanishes exactly where
+        // orient2d(a, b, p) does, so it is K·orient2d(a, b, p); K's sign from one point off it.
+        const Vec3 off(s.a.x() - (s.b.y() - s.a.y()), s.a.y() + (s.b.x() - s.a.x()), s.a.z());
+        const int d = exact_orientation(s.a, s.b, c, off), o = exact_orient2d_sign(s.a, s.b, off);
+        if (d != 0 && o != 0) {
+          s.face_kind[k] = SilhouetteEdge::kVertical;
+          s.kind_sign[k] = std::int8_t(d * o);
+        }
+      }
+    }
+    candidates.push_back(candidate);
+    edge_solid.push_back(e.component);
+  }
+  // Candidates continued by a collinear one at an end (exact collinearity of the three points).
+  {
+    std::vector<std::pair<std::array<double, 3>, std::uint32_t>> ends;
+    ends.reserve(2 * candidates.size());
+    for (std::uint32_t i = 0; i < candidates.size(); ++i)
+      for (const Vec3& v : {candidates[i].edge.a, candidates[i].edge.b}) ends.push_back({{v.x(), v.y(), v.z()}, i});
+    std::sort(ends.begin(), ends.end());
+    std::vector<char> split(candidates.size(), 0);
+    for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
+      if (ends[i].first != ends[i + 1].first) continue;
+      const SilhouetteEdge &e = candidates[ends[i].second].edge, &f = candidates[ends[i + 1].second].edge;
+      const Vec3 shared(ends[i].first[0], ends[i].first[1], ends[i].first[2]);
+      const Vec3& u = e.a == shared ? e.b : e.a;
+      const Vec3& w = f.a == shared ? f.b : f.a;
+      const auto yz = [](const Vec3& p) { return Vec3(p.y(), p.z(), 0); };
+      const auto zx = [](const Vec3& p) { return Vec3(p.z(), p.x(), 0); };
+      if (exact_orient2d_sign(u, shared, w) == 0 && exact_orient2d_sign(yz(u), yz(shared), yz(w)) == 0 &&
+          exact_orient2d_sign(zx(u), zx(shared), zx(w)) == 0)
+        split[ends[i].second] = split[ends[i + 1].second] = 1;
+    }
+    out.split_edges = std::size_t(std::count(split.begin(), split.end(), 1));
+  }
+  build_edge_bvh(out, candidates, edge_solid);
+  for (const Candidate& c : candidates) {
+    out.edges.push_back(c.edge);
+    out.edge_third_vertices.push_back(c.c);
+  }
+
+  // The other components' triangles, with a median-split BVH (leaves of ≤ 4 triangles).
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!column[root[t]]) out.other_triangles.push_back(t);
+  build_triangle_bvh(soup, out.other_triangles, out.other_nodes);
+  return out;
+}
+
+}  // namespace skyband
