@@ -18,8 +18,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/epw_reader.h"
 #include "io/mesh_reader.h"
 #include "lighting/climate/climate_irradiation.h"
@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   opt.threads = threads;
   std::printf("# %s, %zu triangles; %s, %zu intervals; %d threads\n", std::filesystem::path(mesh).filename().c_str(),
               scene.soup().triangle_count(), std::filesystem::path(weather).filename().c_str(), hours.size(), threads);
-  std::printf("| points | svf s | year s | year / svf | svf points/s | year points/s | peak RSS MB |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| points | svf s | year s | year / svf | svf points/s | year points/s | peak RSS MB |\n|---|---|---|---|---|---|---|\n");
   const auto row = [&](std::size_t n) {
     const std::vector<QueryPoint> pts = gen::real_mesh_points(scene, n, 21);
     // The fastest of two runs of each (noise on a shared machine only slows).

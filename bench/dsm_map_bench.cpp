@@ -21,22 +21,24 @@
 #include <filesystem>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <CLI/CLI.hpp>
 
 #include "geometry/mesh/height_field.h"
 #include "geometry/mesh/scene.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 
 using namespace skyband;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 constexpr double kPi = 3.14159265358979323846;
 
 // Shadow-casting SVF of every pixel (NaN pixels: NaN), on `threads` threads over rows.
@@ -84,7 +86,6 @@ std::vector<double> shadow_casting_svf(const HeightField& f, int threads) {
   return svf;
 }
 
-
 void run(const char* name, const HeightField& f, int threads) {
   const auto t0 = Clock::now();
   const Scene scene(height_field_mesh(f, height_field_floor(f)));
@@ -123,8 +124,11 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "worker threads for both methods");
   CLI11_PARSE(app, argc, argv);
   if (size < 40) size = 40;
-  std::printf("# %d threads; skyband: exact SVF of every pixel (time includes meshing and the column-solid classification)\n", threads);
-  std::printf("| raster | pixels | column triangles | skyband pixels/s | shadow casting (153 patches) pixels/s | ratio | shadow casting |error| max / mean | skyband method |\n");
+  std::printf("# %d threads; skyband: exact SVF of every pixel (time includes meshing and the column-solid classification)\n",
+              threads);
+  std::printf(
+      "| raster | pixels | column triangles | skyband pixels/s | shadow casting (153 patches) pixels/s | ratio | shadow casting "
+      "|error| max / mean | skyband method |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   run("synthetic city, flat ground", gen::synthetic_city_dsm(size, 5, false), threads);
   run("synthetic city, 0.3 m rough ground", gen::synthetic_city_dsm(size, 5, true), threads);

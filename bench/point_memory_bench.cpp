@@ -23,8 +23,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/epw_reader.h"
 #include "io/mesh_reader.h"
 #include "lighting/climate/climate_irradiation.h"
@@ -97,13 +97,16 @@ int main(int argc, char** argv) {
   };
   std::printf("# %s; %s; %d threads; each job in its own process\n", std::filesystem::path(mesh).filename().c_str(),
               std::filesystem::path(weather).filename().c_str(), threads);
-  std::printf("| job | points | peak RSS MB | s | points | peak RSS MB | s | bytes per further point |\n|---|---|---|---|---|---|---|---|\n");
-  for (const auto& [name, job] : {std::pair<const char*, std::function<std::size_t(std::size_t)>>{"svf", svf_job},
-                                  std::pair<const char*, std::function<std::size_t(std::size_t)>>{"irradiance --weather (year)", year_job}}) {
+  std::printf(
+      "| job | points | peak RSS MB | s | points | peak RSS MB | s | bytes per further point "
+      "|\n|---|---|---|---|---|---|---|---|\n");
+  for (const auto& [name, job] :
+       {std::pair<const char*, std::function<std::size_t(std::size_t)>>{"svf", svf_job},
+        std::pair<const char*, std::function<std::size_t(std::size_t)>>{"irradiance --weather (year)", year_job}}) {
     const ChildResult a = in_child(job, small), b = in_child(job, large);
     const double per_point = b.points > a.points ? (b.peak_mb - a.peak_mb) * 1048576.0 / double(b.points - a.points) : 0;
-    std::printf("| %s | %zu | %.1f | %.2f | %zu | %.1f | %.2f | %.0f |\n", name, a.points, a.peak_mb, a.seconds, b.points, b.peak_mb,
-                b.seconds, per_point);
+    std::printf("| %s | %zu | %.1f | %.2f | %zu | %.1f | %.2f | %.0f |\n", name, a.points, a.peak_mb, a.seconds, b.points,
+                b.peak_mb, b.seconds, per_point);
     std::fflush(stdout);
   }
   return 0;

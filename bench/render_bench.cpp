@@ -23,9 +23,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "render/renderer.h"
-#include "lighting/sun/sun.h"
 #include "cli/paper_building.h"
+#include "lighting/sun/sun.h"
+#include "render/renderer.h"
 
 using namespace skyband;
 
@@ -38,7 +38,8 @@ double since(std::chrono::steady_clock::time_point t) {
 double cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 double peak_rss_mb() {
   rusage u{};
@@ -84,17 +85,25 @@ int main(int argc, char** argv) {
   const Scene scene(std::move(pb.soup));
   std::vector<const Material*> mats;
   for (const std::string& slot : scene.soup().material_names)
-    mats.push_back(&find_material(slot == "wall" ? "ceramic-tile" : slot == "frame" ? "window-frame"
-                                  : slot == "glass" ? "window-glass" : slot == "ground" ? "ground" : "diffuse-wall"));
-  struct Sun { const char* name; double alt, az; };
-  const Sun suns[] = {{"fig6a 17 deg morning", 17, 110}, {"fig6b 60 deg noon", 60, 180},
-                      {"fig6c 8 deg evening", 8, 250}, {"fig6d 4 deg evening", 4, 250}};
+    mats.push_back(&find_material(slot == "wall"     ? "ceramic-tile"
+                                  : slot == "frame"  ? "window-frame"
+                                  : slot == "glass"  ? "window-glass"
+                                  : slot == "ground" ? "ground"
+                                                     : "diffuse-wall"));
+  struct Sun {
+    const char* name;
+    double alt, az;
+  };
+  const Sun suns[] = {{"fig6a 17 deg morning", 17, 110},
+                      {"fig6b 60 deg noon", 60, 180},
+                      {"fig6c 8 deg evening", 8, 250},
+                      {"fig6d 4 deg evening", 4, 250}};
   const AtmosphereParams atm;
 
-  std::printf("paper building, %d triangles, %dx%d, %d sample(s)/pixel, N = %d\n", static_cast<int>(scene.soup().triangle_count()),
-              width, height, samples, bands);
-  std::printf("%-28s %10s %10s %10s %10s %10s %12s %12s\n", "image", "trace s", "visib. s", "sun s", "sky s", "shade s", "total s",
-              "shade cpu s");
+  std::printf("paper building, %d triangles, %dx%d, %d sample(s)/pixel, N = %d\n",
+              static_cast<int>(scene.soup().triangle_count()), width, height, samples, bands);
+  std::printf("%-28s %10s %10s %10s %10s %10s %12s %12s\n", "image", "trace s", "visib. s", "sun s", "sky s", "shade s",
+              "total s", "shade cpu s");
   auto t0 = std::chrono::steady_clock::now();
   GeometryPass pass = trace_geometry(scene, camera, rs);
   bool first = true;

@@ -12,8 +12,8 @@
 #include <CLI/CLI.hpp>
 
 #include "lighting/atmosphere/atmosphere.h"
-#include "lighting/spectrum/colour.h"
 #include "lighting/atmosphere/sky_table.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/sun/sun.h"
 
 using namespace skyband;
@@ -30,9 +30,15 @@ struct Clock {
     return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
   }
 };
-double seconds_since(double t0) { return Clock::now() - t0; }
-double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-double deg(double d) { return d * kPi / 180.0; }
+double seconds_since(double t0) {
+  return Clock::now() - t0;
+}
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,9 +66,10 @@ int main(int argc, char** argv) {
     t0 = Clock::now();
     const SkyTable table(atm, sun17, orders);
     const double t_table = seconds_since(t0);
-    std::printf("%-48s %12.3f ms\n",
-                orders == ScatteringOrders::Single ? "SkyTable build, single (48x48 nodes)" : "SkyTable build, multiple (48x48 nodes)",
-                1e3 * t_table);
+    std::printf(
+        "%-48s %12.3f ms\n",
+        orders == ScatteringOrders::Single ? "SkyTable build, single (48x48 nodes)" : "SkyTable build, multiple (48x48 nodes)",
+        1e3 * t_table);
     // Look-ups at pre-generated random upper-hemisphere directions.
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> U(0.0, 1.0);

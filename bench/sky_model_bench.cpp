@@ -14,8 +14,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/spectrum/colour.h"
 #include "lighting/sky/sky_model.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/sun/sun.h"
 #include "lighting/sun/sun_position.h"
 
@@ -27,8 +27,12 @@ double cpu_now() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
-double wall_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-double deg(double d) { return d * kPi / 180.0; }
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 volatile double g_sink = 0;  // keeps results alive
 }  // namespace
 
@@ -50,7 +54,8 @@ int main(int argc, char** argv) {
       in.time = LocalDateTime{2026, 6, 21, 0, 0, 60.0 * (i % 1440) * 0.999, 2.0};
       g_sink = g_sink + sun_position_spa(in).zenith_deg;
     }
-    std::printf("%-44s %11.3f us %11.3f us\n", "NREL SPA (full, with nutation)", 1e6 * (cpu_now() - c0) / n, 1e6 * (wall_now() - w0) / n);
+    std::printf("%-44s %11.3f us %11.3f us\n", "NREL SPA (full, with nutation)", 1e6 * (cpu_now() - c0) / n,
+                1e6 * (wall_now() - w0) / n);
   }
   // spectrum → sRGB
   {
@@ -61,7 +66,8 @@ int main(int argc, char** argv) {
       s[i % kSpectrumSamples] += 1e-9;
       g_sink = g_sink + spectrum_to_linear_srgb(s).x();
     }
-    std::printf("%-44s %11.3f ns %11.3f ns\n", "spectrum -> XYZ -> linear sRGB", 1e9 * (cpu_now() - c0) / n, 1e9 * (wall_now() - w0) / n);
+    std::printf("%-44s %11.3f ns %11.3f ns\n", "spectrum -> XYZ -> linear sRGB", 1e9 * (cpu_now() - c0) / n,
+                1e9 * (wall_now() - w0) / n);
   }
 
   const Vec3 sun = direction_from_altitude_azimuth(deg(30), deg(180));
@@ -75,15 +81,16 @@ int main(int argc, char** argv) {
   for (const char* model : {"single", "multiple", "cie-12", "cie-overcast"}) {
     const double c0 = cpu_now(), w0 = wall_now();
     const SkyModel sky(AtmosphereParams{}, sun, parse_sky_model(model, "--model"));
-    std::printf("%-44s %11.1f ms %11.1f ms\n", (std::string("build SkyModel ") + model).c_str(), 1e3 * (cpu_now() - c0), 1e3 * (wall_now() - w0));
+    std::printf("%-44s %11.1f ms %11.1f ms\n", (std::string("build SkyModel ") + model).c_str(), 1e3 * (cpu_now() - c0),
+                1e3 * (wall_now() - w0));
     Spectrum l;
     const double c1 = cpu_now(), w1 = wall_now();
     for (int i = 0; i < lookups; ++i) {
       sky.radiance_into(dirs[static_cast<std::size_t>(i) & 4095], l);
       g_sink = g_sink + l[20];
     }
-    std::printf("%-44s %11.1f ns %11.1f ns\n", (std::string("  radiance look-up ") + model).c_str(), 1e9 * (cpu_now() - c1) / lookups,
-                1e9 * (wall_now() - w1) / lookups);
+    std::printf("%-44s %11.1f ns %11.1f ns\n", (std::string("  radiance look-up ") + model).c_str(),
+                1e9 * (cpu_now() - c1) / lookups, 1e9 * (wall_now() - w1) / lookups);
     const double c2 = cpu_now(), w2 = wall_now();
     const int n = 512;
     for (int row = 0; row < n; ++row)
@@ -94,14 +101,17 @@ int main(int argc, char** argv) {
         sky.radiance_into(Vec3(std::sin(az) * std::sin(zen), std::cos(az) * std::sin(zen), std::cos(zen)), l);
         g_sink = g_sink + spectrum_to_linear_srgb(l).y();
       }
-    std::printf("%-44s %11.1f ms %11.1f ms\n", (std::string("  512x512 fisheye render ") + model).c_str(), 1e3 * (cpu_now() - c2), 1e3 * (wall_now() - w2));
+    std::printf("%-44s %11.1f ms %11.1f ms\n", (std::string("  512x512 fisheye render ") + model).c_str(), 1e3 * (cpu_now() - c2),
+                1e3 * (wall_now() - w2));
   }
   // A relit variant: a new sun, the same atmosphere (its multiple-scattering table is shared, so
   // only the sun-dependent sky table is rebuilt). CPU time is the calling thread's only.
   {
     const double c0 = cpu_now(), w0 = wall_now();
-    const SkyModel sky(AtmosphereParams{}, direction_from_altitude_azimuth(deg(8), deg(250)), parse_sky_model("multiple", "--model"));
-    std::printf("%-44s %11.1f ms %11.1f ms\n", "rebuild SkyModel multiple, new sun", 1e3 * (cpu_now() - c0), 1e3 * (wall_now() - w0));
+    const SkyModel sky(AtmosphereParams{}, direction_from_altitude_azimuth(deg(8), deg(250)),
+                       parse_sky_model("multiple", "--model"));
+    std::printf("%-44s %11.1f ms %11.1f ms\n", "rebuild SkyModel multiple, new sun", 1e3 * (cpu_now() - c0),
+                1e3 * (wall_now() - w0));
   }
   return 0;
 }

@@ -24,11 +24,11 @@
 // error ≤ 1e-3 in SVF and exposure.
 #include <embree3/rtcore.h>
 
+#include <math.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <math.h>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -36,17 +36,17 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <CLI/CLI.hpp>
 
 #include "geometry/exact/exact_sky.h"
-#include "geometry/mesh/height_field.h"
 #include "geometry/exact/occluder_set.h"
-#include "geometry/visibility/sky_factors.h"
+#include "geometry/mesh/height_field.h"
 #include "geometry/support/real_mesh_points.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/mesh_reader.h"
 
 using namespace skyband;
@@ -54,7 +54,9 @@ using namespace skyband;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // ---- The Monte Carlo estimator -------------------------------------------------------------
 
@@ -64,12 +66,12 @@ class EmbreeSky {
     device_ = rtcNewDevice(nullptr);
     scene_ = rtcNewScene(device_);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          soup.vertices.size()));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), soup.vertices.size()));
     for (std::size_t i = 0; i < soup.vertices.size(); ++i)
       for (int k = 0; k < 3; ++k) v[3 * i + k] = float(soup.vertices[i][k] - origin[k]);
-    auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                             soup.triangles.size()));
+    auto* t = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), soup.triangles.size()));
     for (std::size_t i = 0; i < soup.triangles.size(); ++i)
       for (int k = 0; k < 3; ++k) t[3 * i + k] = soup.triangles[i][k];
     rtcCommitGeometry(g);
@@ -162,8 +164,10 @@ class EmbreeSky {
           const double u1 = (i + next()) / side, u2 = (j + next()) / side;
           const double phi = 2 * kPi * u2;
           double st, ct;
-          if (cosine) st = std::sqrt(u1), ct = std::sqrt(1 - u1);
-          else ct = u1, st = std::sqrt(std::max(0.0, 1 - u1 * u1));
+          if (cosine)
+            st = std::sqrt(u1), ct = std::sqrt(1 - u1);
+          else
+            ct = u1, st = std::sqrt(std::max(0.0, 1 - u1 * u1));
           table.emplace_back(st * std::cos(phi), st * std::sin(phi), ct);
         }
     }
@@ -249,7 +253,8 @@ void run_scene(const BenchScene& s, const Options& o) {
       mc_max[c] = std::max(mc_max[c], em[c]), mc_mean[c] += em[c] / double(nr);
     }
     // Binomial standard error without stratification: an upper bound for the stratified estimate.
-    ref_se = std::max(ref_se, std::sqrt(std::max(ref_svf[k] * (1 - ref_svf[k]), ref_exp[k] * (1 - ref_exp[k])) / o.reference_rays));
+    ref_se =
+        std::max(ref_se, std::sqrt(std::max(ref_svf[k] * (1 - ref_svf[k]), ref_exp[k] * (1 - ref_exp[k])) / o.reference_rays));
   }
   if (o.profile) {
     ExactSky exact(scene, 1e-6);
@@ -265,17 +270,20 @@ void run_scene(const BenchScene& s, const Options& o) {
         pieces += exact.occluded().piece_count();
       }
       const double m = double(std::max<std::size_t>(1, e - b));
-      std::printf("# %s %s: per point %.0f occluders projected (max %.0f), %.0f changing the union, %.0f nodes visited, %.0f pieces\n",
-                  s.name.c_str(), half ? "facade" : "street", projected / m, worst, changing / m, visited / m, pieces / m);
+      std::printf(
+          "# %s %s: per point %.0f occluders projected (max %.0f), %.0f changing the union, %.0f nodes visited, %.0f pieces\n",
+          s.name.c_str(), half ? "facade" : "street", projected / m, worst, changing / m, visited / m, pieces / m);
     }
   }
   const double sky_rate = double(n) / t_sky, mc_rate = double(n) / t_mc;
-  std::printf("| %s | %zu | %zu | %.2f s | %.0f | %.0f | **%.1f×** | %.1e / %.1e | %.1e / %.1e | %.1e / %.1e | %.1e / %.1e | %.0e | %s |\n",
-              s.name.c_str(), s.soup.triangle_count(), n, t_pre, sky_rate, mc_rate, sky_rate / mc_rate, sky_max[0], sky_mean[0],
-              sky_max[1], sky_mean[1], mc_max[0], mc_mean[0], mc_max[1], mc_mean[1], ref_se,
-              (std::to_string(run.by_horizon) + " horizon, " + std::to_string(run.by_exact) + " exact, " +
-               std::to_string(occ.occluders.size()) + " occluders")
-                  .c_str());
+  std::printf(
+      "| %s | %zu | %zu | %.2f s | %.0f | %.0f | **%.1f×** | %.1e / %.1e | %.1e / %.1e | %.1e / %.1e | %.1e / %.1e | %.0e | %s "
+      "|\n",
+      s.name.c_str(), s.soup.triangle_count(), n, t_pre, sky_rate, mc_rate, sky_rate / mc_rate, sky_max[0], sky_mean[0],
+      sky_max[1], sky_mean[1], mc_max[0], mc_mean[0], mc_max[1], mc_mean[1], ref_se,
+      (std::to_string(run.by_horizon) + " horizon, " + std::to_string(run.by_exact) + " exact, " +
+       std::to_string(occ.occluders.size()) + " occluders")
+          .c_str());
   std::fflush(stdout);
 }
 
@@ -293,7 +301,6 @@ BenchScene dsm_scene(const std::string& name, const HeightField& f, std::size_t 
   }
   return s;
 }
-
 
 // A mesh rasterised at `pixel_m` by rays cast down at pixel centres (the highest surface).
 HeightField rasterise(const TriangleSoup& soup, double pixel_m) {
@@ -332,9 +339,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (quick) o.points = 400, o.reference_points = 20, o.reference_rays = 250000;
 
-  std::printf("# %zu points per scene (half street, half facade), %d threads; Monte Carlo %d rays per point, reference %d rays on %zu points\n",
-              o.points, o.threads, o.rays, o.reference_rays, o.reference_points);
-  std::printf("| scene | triangles | points | preprocessing | skyband points/s | Monte Carlo points/s | ratio | skyband svf err max / mean | skyband exposure err | MC svf err | MC exposure err | reference s.e. ≤ | skyband methods |\n");
+  std::printf(
+      "# %zu points per scene (half street, half facade), %d threads; Monte Carlo %d rays per point, reference %d rays on %zu "
+      "points\n",
+      o.points, o.threads, o.rays, o.reference_rays, o.reference_points);
+  std::printf(
+      "| scene | triangles | points | preprocessing | skyband points/s | Monte Carlo points/s | ratio | skyband svf err max / "
+      "mean | skyband exposure err | MC svf err | MC exposure err | reference s.e. ≤ | skyband methods |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const auto wanted = [&](const std::string& name) { return o.only.empty() || name.find(o.only) != std::string::npos; };
 
@@ -351,7 +362,8 @@ int main(int argc, char** argv) {
     s.points.insert(s.points.end(), f.begin(), f.end());
     run_scene(s, o);
   }
-  if (wanted("DSM synthetic city 300² 1 m")) run_scene(dsm_scene("DSM synthetic city 300² 1 m", gen::synthetic_city_dsm(300, 5, true), o.points, 13), o);
+  if (wanted("DSM synthetic city 300² 1 m"))
+    run_scene(dsm_scene("DSM synthetic city 300² 1 m", gen::synthetic_city_dsm(300, 5, true), o.points, 13), o);
   const std::filesystem::path dir = std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings";
   if (wanted("DSM rotterdam block 1 m")) {
     const TriangleSoup rotterdam = read_mesh(dir / "rotterdam_delfshaven_blockA_lod2.obj");
@@ -371,7 +383,8 @@ int main(int argc, char** argv) {
     const Scene probe(s.soup);
     s.points = gen::real_mesh_points(probe, o.points, 21);
     if (s.points.empty()) {
-      std::printf("| %s | %zu | 0 | — | — | — | — | — | — | — | — | — | no street or facade points |\n", s.name.c_str(), s.soup.triangle_count());
+      std::printf("| %s | %zu | 0 | — | — | — | — | — | — | — | — | — | no street or facade points |\n", s.name.c_str(),
+                  s.soup.triangle_count());
       continue;
     }
     run_scene(s, o);

@@ -28,14 +28,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "lighting/spectrum/colour.h"
-#include "lighting/brdf/material.h"
 #include "geometry/core/input_error.h"
-#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/brdf/material.h"
 #include "lighting/integrals/specular_sky.h"
-#include "render/specular_sky_colour.h"
+#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
+#include "render/specular_sky_colour.h"
 
 using namespace skyband;
 
@@ -46,7 +46,9 @@ struct ClearSky {
 };
 
 using test::view_at;
-double sum(const Spectrum& s) { return test::channel_sum(s); }
+double sum(const Spectrum& s) {
+  return test::channel_sum(s);
+}
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -10,7 +10,8 @@
 // Targets (reported, not asserted): ≥ 50,000 points/s on the 10k city and ≥ 10,000 points/s on
 // the 1M city at default settings with 2 threads; max |error| ≤ 1e-3. A timed run shorter than
 // 0.3 s is repeated (up to 9 times, until 0.3 s) and the median time reported.
-// Usage: bench_svf [--points N] [--oracle-points K] [--quick] [--small-only | --large-only] [--only TEXT] [--max-threads 1|2] [--hash] [--axis-tail RAD]
+// Usage: bench_svf [--points N] [--oracle-points K] [--quick] [--small-only | --large-only] [--only TEXT] [--max-threads 1|2]
+// [--hash] [--axis-tail RAD]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,9 +26,9 @@
 #include "geometry/bands/band_visibility.h"
 #include "geometry/bands/sky_integral.h"
 #include "geometry/horizon/column_scene.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 
 using namespace skyband;
 
@@ -38,7 +39,9 @@ using Clock = std::chrono::steady_clock;
 // a street slot falls as ~1/R³, so tighter targets need far larger radii (and union sizes).
 constexpr double kOracleHalfWidth = 5e-5;
 constexpr double kMinSeconds = 0.3;  // shorter timed runs are repeated (median)
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 struct Config {
   std::string name;
@@ -68,8 +71,8 @@ std::vector<Config> configs() {
   return out;
 }
 
-void run_city(const char* label, std::size_t target_triangles, std::size_t n_points, std::size_t n_oracle,
-              double max_radius_m, const std::string& only, int max_threads, bool print_hash) {
+void run_city(const char* label, std::size_t target_triangles, std::size_t n_points, std::size_t n_oracle, double max_radius_m,
+              const std::string& only, int max_threads, bool print_hash) {
   auto t0 = Clock::now();
   const gen::City city = gen::make_city(gen::city_params_for_triangles(target_triangles, 2024));
   const double t_gen = seconds_since(t0);
@@ -94,8 +97,8 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
     const QueryPoint& q = pts[subset[k]];
     // Start at 150 m (about two blocks) and double until the bounds are within ±kOracleHalfWidth
     // or the radius passes max_radius_m (beyond the city's edge the ring bound is loose: open
-    // sky, so small cities are run to the exact answer with an unlimited radius). The city is closed outward-wound boxes on a ground seen from
-    // above, so only front faces are needed (see svf_union_oracle_culled).
+    // sky, so small cities are run to the exact answer with an unlimited radius). The city is closed outward-wound boxes on a
+    // ground seen from above, so only front faces are needed (see svf_union_oracle_culled).
     const oracle::SvfBounds b =
         oracle::svf_union_oracle_culled(q.position, q.normal, city.soup, 150.0, kOracleHalfWidth, true, max_radius_m);
     exact[k] = b.estimate();
@@ -104,18 +107,21 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
   }
   const double t_oracle = seconds_since(t0);
 
-  std::printf("\n## %s: %zu triangles (%d x %d blocks, %zu buildings), %zu points (%zu street, %zu facade +5 cm, %zu on facade)\n",
-              label, city.soup.triangle_count(), city.params.blocks, city.params.blocks, city.buildings.size(), pts.size(),
-              n_points / 2, n_points / 4, pts.size() - n_points / 2 - n_points / 4);
-  std::printf("# column-solid classification %.2f s (%zu column solids, %zu other components)\n", t_columns, columns.column_solids,
-              columns.other_components);
-  std::printf("# generation %.2f s, BVH build %.2f s; oracle on %zu points: %.1f s (%.2f s/point, mean %.0f triangles within the "
-              "cull radius, bounds half-width <= %.1e)\n",
-              t_gen, t_bvh, subset.size(), t_oracle, subset.empty() ? 0.0 : t_oracle / subset.size(), mean_near, worst_half_width);
+  std::printf(
+      "\n## %s: %zu triangles (%d x %d blocks, %zu buildings), %zu points (%zu street, %zu facade +5 cm, %zu on facade)\n", label,
+      city.soup.triangle_count(), city.params.blocks, city.params.blocks, city.buildings.size(), pts.size(), n_points / 2,
+      n_points / 4, pts.size() - n_points / 2 - n_points / 4);
+  std::printf("# column-solid classification %.2f s (%zu column solids, %zu other components)\n", t_columns,
+              columns.column_solids, columns.other_components);
+  std::printf(
+      "# generation %.2f s, BVH build %.2f s; oracle on %zu points: %.1f s (%.2f s/point, mean %.0f triangles within the "
+      "cull radius, bounds half-width <= %.1e)\n",
+      t_gen, t_bvh, subset.size(), t_oracle, subset.empty() ? 0.0 : t_oracle / subset.size(), mean_near, worst_half_width);
   std::printf("| %-30s | %7s | %12s | %12s | %12s | %10s | %9s |\n", "options", "threads", "points/s", "max |err|", "mean |err|",
               "bytes/pt", "same as 1T");
   std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(32, '-').c_str(), std::string(9, '-').c_str(), std::string(14, '-').c_str(),
-              std::string(14, '-').c_str(), std::string(14, '-').c_str(), std::string(12, '-').c_str(), std::string(11, '-').c_str());
+              std::string(14, '-').c_str(), std::string(14, '-').c_str(), std::string(12, '-').c_str(),
+              std::string(11, '-').c_str());
   for (const Config& c : configs()) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     std::vector<double> svf_1t;
@@ -162,8 +168,10 @@ void run_city(const char* label, std::size_t target_triangles, std::size_t n_poi
         std::printf("# %s: SVF hash %016llx\n", c.name.c_str(), static_cast<unsigned long long>(hash));
       }
       const char* same = "-";
-      if (threads == 1) svf_1t = svf;
-      else same = (svf == svf_1t) ? "yes" : "NO";
+      if (threads == 1)
+        svf_1t = svf;
+      else
+        same = (svf == svf_1t) ? "yes" : "NO";
       std::printf("| %-30s | %7d | %12.0f | %12.2e | %12.2e | %10.0f | %9s |\n", c.name.c_str(), threads, double(pts.size()) / t,
                   max_err, subset.empty() ? 0.0 : sum_err / subset.size(), bytes_per_point, same);
       std::fflush(stdout);
@@ -195,9 +203,11 @@ int main(int argc, char** argv) {
     points = std::min<std::size_t>(points, 1000);
     oracle_points = std::min<std::size_t>(oracle_points, 8);
   }
-  std::printf("# skyband SVF benchmark. Targets (not asserted): >= 50,000 points/s (10k city) and >= 10,000 points/s (1M "
-              "city) at default options, 2 threads; max |err| <= 1e-3.\n");
+  std::printf(
+      "# skyband SVF benchmark. Targets (not asserted): >= 50,000 points/s (10k city) and >= 10,000 points/s (1M "
+      "city) at default options, 2 threads; max |err| <= 1e-3.\n");
   if (!large_only) run_city("city ~10k triangles", 10000, points, oracle_points, 1e300, only, max_threads, print_hash);
-  if (!quick && !small_only) run_city("city ~1M triangles", 1000000, points, oracle_points, 1200.0, only, max_threads, print_hash);
+  if (!quick && !small_only)
+    run_city("city ~1M triangles", 1000000, points, oracle_points, 1200.0, only, max_threads, print_hash);
   return 0;
 }

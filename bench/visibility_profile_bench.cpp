@@ -22,8 +22,8 @@
 
 #include "cli/paper_building.h"
 #include "geometry/bands/band_visibility.h"
-#include "geometry/mesh/camera.h"
 #include "geometry/bands/sky_integral.h"
+#include "geometry/mesh/camera.h"
 #include "geometry/support/scene_generators.h"
 
 using namespace skyband;
@@ -97,8 +97,8 @@ void profile(const Scene& scene, const std::vector<Set>& sets, const std::vector
         }
       }
       const double n = double(set.pts.size());
-      std::printf("%-8s %-28s %10.0f %8.1f %8.1f %10.1f %9.0f %8.4f %9.2e %9.2e %08x\n", set.name, c.name.c_str(), n / s, planes / n,
-                  double(cache.bands().size()) / n, tests / n, cache.bytes_per_point(), svf / n, max_err, sum_err / n,
+      std::printf("%-8s %-28s %10.0f %8.1f %8.1f %10.1f %9.0f %8.4f %9.2e %9.2e %08x\n", set.name, c.name.c_str(), n / s,
+                  planes / n, double(cache.bands().size()) / n, tests / n, cache.bytes_per_point(), svf / n, max_err, sum_err / n,
                   static_cast<unsigned>(hash >> 32));
     }
   }
@@ -123,11 +123,16 @@ int main(int argc, char** argv) {
   std::vector<std::string> extra;
   app.add_option("--config", extra, "extra configuration BANDS,TOLERANCE (e.g. 64,1e-3; tolerance 0 = fixed bands); repeatable");
   CLI11_PARSE(app, argc, argv);
-  std::vector<Config> configs = {{"N=32 fixed", 32, 0},        {"N=64 fixed", 64, 0},
-                                       {"N=256 fixed", 256, 0},      {"default (N=32, tol 5e-4)", 32, 5e-4},
-                                       {"N=32, tol 2.5e-4", 32, 2.5e-4}, {"N=32, tol 1e-3", 32, 1e-3},
-                                       {"N=16, tol 2.5e-4", 16, 2.5e-4}, {"N=32, tol 1e-4", 32, 1e-4},
-                                       {"N=16, tol 1e-3", 16, 1e-3}, {"N=16, tol 2e-3", 16, 2e-3}};
+  std::vector<Config> configs = {{"N=32 fixed", 32, 0},
+                                 {"N=64 fixed", 64, 0},
+                                 {"N=256 fixed", 256, 0},
+                                 {"default (N=32, tol 5e-4)", 32, 5e-4},
+                                 {"N=32, tol 2.5e-4", 32, 2.5e-4},
+                                 {"N=32, tol 1e-3", 32, 1e-3},
+                                 {"N=16, tol 2.5e-4", 16, 2.5e-4},
+                                 {"N=32, tol 1e-4", 32, 1e-4},
+                                 {"N=16, tol 1e-3", 16, 1e-3},
+                                 {"N=16, tol 2e-3", 16, 2e-3}};
   for (const std::string& e : extra) {
     const std::size_t comma = e.find(',');
     int bands = 0;
@@ -150,8 +155,8 @@ int main(int argc, char** argv) {
     const PinholeCamera camera(pb.camera);
     const Scene scene(std::move(pb.soup));
     std::vector<Set> sets{{"paper", camera_hits(scene, camera)}};
-    std::printf("paper building: %zu triangles, %dx%d, %zu surface points\n", scene.soup().triangle_count(), width,
-                height, sets[0].pts.size());
+    std::printf("paper building: %zu triangles, %dx%d, %zu surface points\n", scene.soup().triangle_count(), width, height,
+                sets[0].pts.size());
     profile(scene, sets, configs, !no_reference, only);
     return 0;
   }

@@ -88,7 +88,9 @@ void Picture::fill_rect(int x0, int y0, int x1, int y1, Rgb8 c) {
     for (int x = std::max(x0, 0); x < std::min(x1, width); ++x) put(x, y, c);
 }
 
-int text_width(std::string_view text, int scale) { return text.empty() ? 0 : (6 * int(text.size()) - 1) * scale; }
+int text_width(std::string_view text, int scale) {
+  return text.empty() ? 0 : (6 * int(text.size()) - 1) * scale;
+}
 
 void draw_text(Picture& p, int x, int y, std::string_view text, int scale, Rgb8 colour, const Rgb8* outline) {
   for (int pass = outline ? 0 : 1; pass < 2; ++pass)

@@ -24,7 +24,9 @@ struct Picture {
 
 // Width in picture pixels of `text` at `scale`.
 int text_width(std::string_view text, int scale);
-constexpr int text_height(int scale) { return 7 * scale; }
+constexpr int text_height(int scale) {
+  return 7 * scale;
+}
 
 // Draws `text` with its top-left corner at (x, y); characters without a glyph are drawn as
 // spaces. With `outline`, every glyph pixel is first surrounded by a one-pixel border of that

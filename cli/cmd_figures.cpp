@@ -32,8 +32,8 @@
 #include "cli/render_output.h"
 #include "geometry/core/input_error.h"
 #include "io/png_writer.h"
-#include "render/renderer.h"
 #include "lighting/sun/sun.h"
+#include "render/renderer.h"
 
 namespace skyband::cli {
 namespace {
@@ -42,7 +42,7 @@ struct FiguresOptions {
   std::string out = "figures";
   int width = 160, height = 120, samples = 1, bands = 64, threads = 0;
   std::string visibility = "bands";  // the paper's band method (its lines are exact: see below)
-  double reuse_tolerance = 0.01;  // image-space specular reuse (render/specular_reuse.h); 0 = off
+  double reuse_tolerance = 0.01;     // image-space specular reuse (render/specular_reuse.h); 0 = off
 };
 
 struct Variant {
@@ -85,10 +85,11 @@ void run_figures(const FiguresOptions& o) {
 
   auto t0 = std::chrono::steady_clock::now();
   GeometryPass pass = trace_geometry(scene, camera, settings);
-  std::printf("geometry pass: %dx%d, %d sample(s)/pixel, N = %d: %zu surface samples, trace %.2f s, visibility %.2f s "
-              "(total %.2f s), cache %.1f MB\n",
-              o.width, o.height, o.samples, o.bands, pass.surfaces.size(), pass.trace_seconds, pass.visibility_seconds,
-              since(t0), pass.visibility.bytes() / 1e6);
+  std::printf(
+      "geometry pass: %dx%d, %d sample(s)/pixel, N = %d: %zu surface samples, trace %.2f s, visibility %.2f s "
+      "(total %.2f s), cache %.1f MB\n",
+      o.width, o.height, o.samples, o.bands, pass.surfaces.size(), pass.trace_seconds, pass.visibility_seconds, since(t0),
+      pass.visibility.bytes() / 1e6);
 
   const std::vector<Variant> variants = {
       {"fig5a", "5A DIFFUSE WALL", "diffuse-wall", 50, 215, 5},
@@ -121,18 +122,19 @@ void run_figures(const FiguresOptions& o) {
     }
     std::vector<const Material*> mats;
     for (const std::string& slot : pass.material_slots) {
-      const std::string name = slot == "wall" ? v.wall
-                               : slot == "frame" ? "window-frame"
-                               : slot == "glass" ? "window-glass"
+      const std::string name = slot == "wall"     ? v.wall
+                               : slot == "frame"  ? "window-frame"
+                               : slot == "glass"  ? "window-glass"
                                : slot == "ground" ? "ground"
                                                   : "diffuse-wall";  // roof, neighbour
       mats.push_back(&find_material(name, "figures"));
     }
     const auto ts = std::chrono::steady_clock::now();
     images.push_back(shade(pass, *sky, mats, settings));
-    std::printf("%s (%s walls, sun %.0f deg at azimuth %.0f): sky model %.2f s, sun visibility %.2f s, shading %.2f s, "
-                "relit total %.2f s\n",
-                v.name.c_str(), v.wall.c_str(), v.altitude_deg, v.azimuth_deg, t_sky, t_sun, since(ts), since(tv));
+    std::printf(
+        "%s (%s walls, sun %.0f deg at azimuth %.0f): sky model %.2f s, sun visibility %.2f s, shading %.2f s, "
+        "relit total %.2f s\n",
+        v.name.c_str(), v.wall.c_str(), v.altitude_deg, v.azimuth_deg, t_sky, t_sun, since(ts), since(tv));
     std::fflush(stdout);
     attrs.push_back(render_attributes(*sky, settings, "skyband_figure", v.name + ": " + v.wall + " walls"));
   }
@@ -145,8 +147,8 @@ void run_figures(const FiguresOptions& o) {
   }
   const SheetImage sheet = make_contact_sheet(tiles, 4);
   write_png_srgb(dir / "figures.png", sheet.width, sheet.height, sheet.rgb, 1.0);
-  std::printf("exposures: fig5 %.4g, fig6 %.4g; wrote %s/fig5a..d, fig6a..d (.exr, .png) and figures.png; total %.2f s\n", e5,
-              e6, dir.string().c_str(), since(t0));
+  std::printf("exposures: fig5 %.4g, fig6 %.4g; wrote %s/fig5a..d, fig6a..d (.exr, .png) and figures.png; total %.2f s\n", e5, e6,
+              dir.string().c_str(), since(t0));
 }
 
 const CommandRegistration reg("figures", [](CLI::App& app) {

@@ -47,16 +47,16 @@
 #include "cli/sun_sky_options.h"
 #include "geometry/core/input_error.h"
 #include "io/csv_table.h"
-#include "io/points_csv.h"
 #include "io/epw_reader.h"
-#include "io/tmy3_reader.h"
 #include "io/hourly_netcdf.h"
+#include "io/points_csv.h"
+#include "io/tmy3_reader.h"
 #include "lighting/climate/climate_irradiation.h"
 #include "lighting/climate/moment_series.h"
-#include "lighting/spectrum/colour.h"
-#include "lighting/integrals/point_irradiance.h"
 #include "lighting/climate/weather_hours.h"
 #include "lighting/climate/weather_timing.h"
+#include "lighting/integrals/point_irradiance.h"
+#include "lighting/spectrum/colour.h"
 
 namespace skyband::cli {
 
@@ -143,8 +143,7 @@ Vec3 sun_of_time_cell(const IrradianceArgs& a, const CsvTable& csv, std::size_t 
 std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
   const CsvTable csv = read_csv_table(a.times, "times file");
   const std::string header_at = a.times + ":" + std::to_string(csv.header_line);
-  const int ct = csv.column("time"), calt = csv.column("sun_altitude"), caz = csv.column("sun_azimuth"),
-            ch = csv.column("hours");
+  const int ct = csv.column("time"), calt = csv.column("sun_altitude"), caz = csv.column("sun_azimuth"), ch = csv.column("hours");
   const bool by_time = ct >= 0, by_angle = calt >= 0 || caz >= 0;
   if (by_time == by_angle)
     throw InputError(header_at + ": give either a 'time' column or 'sun_altitude' and 'sun_azimuth' columns");
@@ -165,7 +164,8 @@ std::vector<SunMoment> read_moments(const IrradianceArgs& a) {
     if (ch >= 0) {
       m.hours = csv.number(r, ch);
       if (m.hours < 0 || m.hours > kMaxHoursPerMoment)
-        throw InputError(csv.where(r) + ": hours " + fmt(m.hours) + " must be in [0, 8784] (a row stands for at most a leap year)");
+        throw InputError(csv.where(r) + ": hours " + fmt(m.hours) +
+                         " must be in [0, 8784] (a row stands for at most a leap year)");
     }
     moments.push_back(m);
   }
@@ -215,8 +215,8 @@ void run_times(const IrradianceArgs& a) {
   const std::vector<SunMoment> moments = a.times.empty() ? generated_moments(a) : read_moments(a);
   if (a.sun_only) return run_sun_hours(a, moments);
 
-  const std::vector<std::string> columns = {"svf",        "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",
-                                            "global_Wh_m2", "sky_lxh",    "sun_lxh",   "global_lxh"};
+  const std::vector<std::string> columns = {"svf",          "sky_exposure", "sun_hours", "sky_Wh_m2", "sun_Wh_m2",
+                                            "global_Wh_m2", "sky_lxh",      "sun_lxh",   "global_lxh"};
   const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
   const auto t0 = std::chrono::steady_clock::now();
@@ -230,8 +230,9 @@ void run_times(const IrradianceArgs& a) {
 
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
-    const double v[] = {r[i].svf,       r[i].sky_exposure, r[i].sun_hours, r[i].sky_Wh_m2, r[i].sun_Wh_m2,
-                        r[i].sky_Wh_m2 + r[i].sun_Wh_m2,   r[i].sky_lxh,   r[i].sun_lxh,   r[i].sky_lxh + r[i].sun_lxh};
+    const double v[] = {r[i].svf,       r[i].sky_exposure, r[i].sun_hours,
+                        r[i].sky_Wh_m2, r[i].sun_Wh_m2,    r[i].sky_Wh_m2 + r[i].sun_Wh_m2,
+                        r[i].sky_lxh,   r[i].sun_lxh,      r[i].sky_lxh + r[i].sun_lxh};
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
   write_points_csv(a.job.out, table, columns, values);
@@ -302,20 +303,22 @@ void run_weather(const IrradianceArgs& a) {
   WeatherSeries series = read_weather_file(a.weather);
   if (from) {
     series = select_period(series, *from, *to);
-    if (series.records.empty())
-      throw InputError(a.weather + ": no records from " + a.from + " to " + a.to);
+    if (series.records.empty()) throw InputError(a.weather + ": no records from " + a.from + " to " + a.to);
   }
   for (const std::string& w : series.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
-  if (const auto w = weather_timing_warning(series, weather_timing(series))) std::fprintf(stderr, "skyband: warning: %s\n", w->c_str());
+  if (const auto w = weather_timing_warning(series, weather_timing(series)))
+    std::fprintf(stderr, "skyband: warning: %s\n", w->c_str());
   WeatherHoursOptions hopt;
   hopt.albedo = a.albedo;
-  if (a.sun_at == "start") hopt.sun_fraction = 0.0;
-  else if (a.sun_at == "end") hopt.sun_fraction = 1.0;
+  if (a.sun_at == "start")
+    hopt.sun_fraction = 0.0;
+  else if (a.sun_at == "end")
+    hopt.sun_fraction = 1.0;
   WeatherHoursReport hrep;
   const std::vector<WeatherHour> hours = weather_hours(series, hopt, &hrep);
 
-  const std::vector<std::string> columns = {"svf",          "sky_exposure",  "ground_view",  "global_kWh_m2", "sky_kWh_m2",
-                                            "sun_kWh_m2",   "ground_kWh_m2", "global_klxh",  "sun_hours"};
+  const std::vector<std::string> columns = {"svf",        "sky_exposure",  "ground_view", "global_kWh_m2", "sky_kWh_m2",
+                                            "sun_kWh_m2", "ground_kWh_m2", "global_klxh", "sun_hours"};
   const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
   const auto t0 = std::chrono::steady_clock::now();
@@ -325,11 +328,12 @@ void run_weather(const IrradianceArgs& a) {
   std::unique_ptr<HourlyNetcdfWriter> hourly;
   if (!a.hourly.empty()) hourly = std::make_unique<HourlyNetcdfWriter>(hourly_spec(a, series, table));
   ClimateHourlySink sink;
-  if (hourly) sink = [&](std::size_t i, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground) {
-    hourly->write(i, sky, sun, ground);
-  };
-  const ClimateRun run =
-      compute_point_climate(scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); }, sink);
+  if (hourly)
+    sink = [&](std::size_t i, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground) {
+      hourly->write(i, sky, sun, ground);
+    };
+  const ClimateRun run = compute_point_climate(
+      scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); }, sink);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(run.points.size()));
@@ -375,16 +379,20 @@ void run_weather(const IrradianceArgs& a) {
                  "irradiance: %s (%.2f N, %.2f E, UTC%+g), %zu intervals %02d-%02d to %02d-%02d: %zu with diffuse light, "
                  "%zu with the sun up; illuminance %s; albedo %s\n",
                  series.location.name.c_str(), series.location.latitude_deg, series.location.longitude_deg,
-                 series.location.time_zone_hours, hours.size(), first.month, first.day, last.month, last.day,
-                 run.sky_intervals, run.sun_intervals,
-                 hrep.illuminance_modelled == 0 ? "from the file" : hrep.illuminance_from_file == 0 ? "by the Perez 1990 efficacy model" : "from the file where given, else Perez 1990",
-                 a.albedo ? fmt(*a.albedo).c_str() : hrep.albedo_from_file > 0 ? "from the file (0.2 where missing)" : "0.2");
+                 series.location.time_zone_hours, hours.size(), first.month, first.day, last.month, last.day, run.sky_intervals,
+                 run.sun_intervals,
+                 hrep.illuminance_modelled == 0    ? "from the file"
+                 : hrep.illuminance_from_file == 0 ? "by the Perez 1990 efficacy model"
+                                                   : "from the file where given, else Perez 1990",
+                 a.albedo                    ? fmt(*a.albedo).c_str()
+                 : hrep.albedo_from_file > 0 ? "from the file (0.2 where missing)"
+                                             : "0.2");
     std::fprintf(stderr,
                  "irradiance: %zu points in %.2f s; %s; sky quadrature calibrated by %.6f (W) and %.6f (lx); %zu ground "
                  "triangles; wrote %s\n",
                  run.points.size(), seconds,
-                 method_summary(run.counts.by_horizon, run.counts.by_exact, run.counts.by_bands).c_str(),
-                 run.sky_calibration[0], run.sky_calibration[1], run.ground_triangles, a.job.out.c_str());
+                 method_summary(run.counts.by_horizon, run.counts.by_exact, run.counts.by_bands).c_str(), run.sky_calibration[0],
+                 run.sky_calibration[1], run.ground_triangles, a.job.out.c_str());
   }
 }
 
@@ -435,9 +443,8 @@ void run(const IrradianceArgs& a) {
   const SunPlacement sun = a.sun_sky.place_sun();
   const SkyModel sky = a.sun_sky.make_sky(sun);
 
-  const std::vector<std::string> columns = {"svf",      "sky_exposure", "cos_incidence", "sun_visible",
-                                            "sky_W_m2", "sun_W_m2",     "global_W_m2",   "sky_lx",
-                                            "sun_lx",   "global_lx",    "sky_ratio"};
+  const std::vector<std::string> columns = {"svf",         "sky_exposure", "cos_incidence", "sun_visible", "sky_W_m2", "sun_W_m2",
+                                            "global_W_m2", "sky_lx",       "sun_lx",        "global_lx",   "sky_ratio"};
   const PointsTable table = a.job.read_points(columns);
   TriangleSoup soup = a.job.load_meshes();
   const auto t0 = std::chrono::steady_clock::now();
@@ -450,9 +457,16 @@ void run(const IrradianceArgs& a) {
 
   std::vector<std::vector<double>> values(columns.size(), std::vector<double>(r.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
-    const double v[] = {r[i].svf,      r[i].sky_exposure,           r[i].cos_incidence, r[i].sun_visible ? 1.0 : 0.0,
-                        r[i].sky_W_m2, r[i].sun_W_m2,               r[i].sky_W_m2 + r[i].sun_W_m2,
-                        r[i].sky_lx,   r[i].sun_lx,                 r[i].sky_lx + r[i].sun_lx,
+    const double v[] = {r[i].svf,
+                        r[i].sky_exposure,
+                        r[i].cos_incidence,
+                        r[i].sun_visible ? 1.0 : 0.0,
+                        r[i].sky_W_m2,
+                        r[i].sun_W_m2,
+                        r[i].sky_W_m2 + r[i].sun_W_m2,
+                        r[i].sky_lx,
+                        r[i].sun_lx,
+                        r[i].sky_lx + r[i].sun_lx,
                         r[i].sky_ratio};
     for (std::size_t c = 0; c < columns.size(); ++c) values[c][i] = v[c];
   }
@@ -462,64 +476,63 @@ void run(const IrradianceArgs& a) {
     const Spectrum& dn = sky.sun_direct_normal();
     const std::size_t n = r.size();
     const double mean_global = n ? std::accumulate(values[6].begin(), values[6].end(), 0.0) / double(n) : 0.0;
-    std::fprintf(stderr,
-                 "irradiance: sun altitude %.3f deg, azimuth %.3f deg, direct normal %.1f W/m2 (%.0f lx); sky %s\n",
+    std::fprintf(stderr, "irradiance: sun altitude %.3f deg, azimuth %.3f deg, direct normal %.1f W/m2 (%.0f lx); sky %s\n",
                  sun.altitude_deg, sun.azimuth_deg, dn.integral_nm(), luminous(dn), sky.model_name().c_str());
-    std::fprintf(stderr,
-                 "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); %s; wrote %s\n",
-                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, summary(r).c_str(),
-                 a.job.out.c_str());
+    std::fprintf(stderr, "irradiance: %zu points in %.2f s (%.0f points/s), mean global %.1f W/m2 (380-780 nm); %s; wrote %s\n",
+                 n, seconds, seconds > 0 ? double(n) / seconds : 0.0, mean_global, summary(r).c_str(), a.job.out.c_str());
   }
 }
 
-CommandRegistration registration{"irradiance", [](CLI::App& app) {
-  auto args = std::make_shared<IrradianceArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "irradiance",
-      "Sky and sun irradiance (W/m2, 380-780 nm) and illuminance (lux) on calculation points: the sky through the\n"
-      "exact visible sky of each point, the sun with an exact shadow test. Points and accuracy options as for svf.\n"
-      "Coordinates: metres, z up (x east, y north); azimuth clockwise from north. Output columns: svf, sky_exposure,\n"
-      "cos_incidence, sun_visible, sky_W_m2, sun_W_m2, global_W_m2, sky_lx, sun_lx, global_lx, sky_ratio (sky_lx over\n"
-      "that of an open horizontal face; with --model cie-overcast the vertical sky component of a window).\n"
-      "With --times FILE: sums over the file's moments instead: sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2, sky_lxh,\n"
-      "sun_lxh, global_lxh (each moment weighted by its 'hours').\n"
-      "With --weather FILE.epw: sums over the file's period under the Perez all-weather sky, with the ground\n"
-      "reflecting albedo x GHI where the point sees it: broadband kWh/m2 (see --weather).\n"
-      "Not included: light reflected by the buildings (and, without --weather, by the ground).");
-  args->job.add_to(cmd, "Output CSV (input rows + the columns above), written atomically");
-  args->sun_sky.add_to(cmd);
-  cmd->add_option("--times", args->times,
-                  "CSV of moments: 'time' (ISO 8601, with --lat --lon) or 'sun_altitude','sun_azimuth' (degrees), "
-                  "optional 'hours' (default 1); outputs sums over them instead of one moment (see --help above)");
-  cmd->add_option("--weather", args->weather,
-                  "Weather file, EnergyPlus EPW or NREL TMY3 CSV (told by content): sums over its period under the Perez all-weather sky, the sun and the "
-                  "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
-                  "(broadband shortwave), global_klxh, sun_hours");
-  cmd->add_option("--hourly", args->hourly,
-                  "With --weather: also the hourly irradiance of every point (sky, sun, ground, global; W/m2) as "
-                  "NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
-  cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
-  cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
-  cmd->add_option("--sun-at", args->sun_at,
-                  "With --weather: where in each record's interval the sun is placed: middle (default, for values\n"
-                  "that are means over the interval, as EPW's), end or start (for instantaneous values)")
-      ->check(CLI::IsMember({"start", "middle", "end"}));
-  cmd->add_option("--albedo", args->albedo, "With --weather: ground reflectance [0, 1] (default: the file's, else 0.2)");
-  args->o_ground = cmd->add_option("--ground-materials", args->ground_materials,
-                                   "With --weather: material names (any case) of the triangles that are ground and hide no "
-                                   "ground (default: ground, terrain, road, water, forest, grass, landuse, ...)")
-                       ->delimiter(',');
-  cmd->add_option("--date", args->dates,
-                  "Moments instead of a times file: every --step minutes through the local day(s) YYYY-MM-DD or "
-                  "FIRST:LAST, at the middle of each step, in --zone (or --tz); needs --lat --lon");
-  args->o_step = cmd->add_option("--step", args->step_minutes, "With --date: minutes per moment (default 10)");
-  cmd->add_option("--zone", args->zone, "With --date: IANA time zone, e.g. Europe/Amsterdam (daylight saving applied)");
-  cmd->add_flag("--sun-only", args->sun_only,
-                "With --times or --date: sun hours only (columns svf, sky_exposure, sun_hours), no sky model per moment");
-  cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table (needs a sun)");
-  cmd->callback([args] { run(*args); });
-  return cmd;
-}};
+CommandRegistration registration{
+    "irradiance", [](CLI::App& app) {
+      auto args = std::make_shared<IrradianceArgs>();
+      CLI::App* cmd = app.add_subcommand(
+          "irradiance",
+          "Sky and sun irradiance (W/m2, 380-780 nm) and illuminance (lux) on calculation points: the sky through the\n"
+          "exact visible sky of each point, the sun with an exact shadow test. Points and accuracy options as for svf.\n"
+          "Coordinates: metres, z up (x east, y north); azimuth clockwise from north. Output columns: svf, sky_exposure,\n"
+          "cos_incidence, sun_visible, sky_W_m2, sun_W_m2, global_W_m2, sky_lx, sun_lx, global_lx, sky_ratio (sky_lx over\n"
+          "that of an open horizontal face; with --model cie-overcast the vertical sky component of a window).\n"
+          "With --times FILE: sums over the file's moments instead: sun_hours, sky_Wh_m2, sun_Wh_m2, global_Wh_m2, sky_lxh,\n"
+          "sun_lxh, global_lxh (each moment weighted by its 'hours').\n"
+          "With --weather FILE.epw: sums over the file's period under the Perez all-weather sky, with the ground\n"
+          "reflecting albedo x GHI where the point sees it: broadband kWh/m2 (see --weather).\n"
+          "Not included: light reflected by the buildings (and, without --weather, by the ground).");
+      args->job.add_to(cmd, "Output CSV (input rows + the columns above), written atomically");
+      args->sun_sky.add_to(cmd);
+      cmd->add_option("--times", args->times,
+                      "CSV of moments: 'time' (ISO 8601, with --lat --lon) or 'sun_altitude','sun_azimuth' (degrees), "
+                      "optional 'hours' (default 1); outputs sums over them instead of one moment (see --help above)");
+      cmd->add_option("--weather", args->weather,
+                      "Weather file, EnergyPlus EPW or NREL TMY3 CSV (told by content): sums over its period under the Perez "
+                      "all-weather sky, the sun and the "
+                      "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
+                      "(broadband shortwave), global_klxh, sun_hours");
+      cmd->add_option("--hourly", args->hourly,
+                      "With --weather: also the hourly irradiance of every point (sky, sun, ground, global; W/m2) as "
+                      "NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
+      cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
+      cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
+      cmd->add_option("--sun-at", args->sun_at,
+                      "With --weather: where in each record's interval the sun is placed: middle (default, for values\n"
+                      "that are means over the interval, as EPW's), end or start (for instantaneous values)")
+          ->check(CLI::IsMember({"start", "middle", "end"}));
+      cmd->add_option("--albedo", args->albedo, "With --weather: ground reflectance [0, 1] (default: the file's, else 0.2)");
+      args->o_ground = cmd->add_option("--ground-materials", args->ground_materials,
+                                       "With --weather: material names (any case) of the triangles that are ground and hide no "
+                                       "ground (default: ground, terrain, road, water, forest, grass, landuse, ...)")
+                           ->delimiter(',');
+      cmd->add_option("--date", args->dates,
+                      "Moments instead of a times file: every --step minutes through the local day(s) YYYY-MM-DD or "
+                      "FIRST:LAST, at the middle of each step, in --zone (or --tz); needs --lat --lon");
+      args->o_step = cmd->add_option("--step", args->step_minutes, "With --date: minutes per moment (default 10)");
+      cmd->add_option("--zone", args->zone, "With --date: IANA time zone, e.g. Europe/Amsterdam (daylight saving applied)");
+      cmd->add_flag("--sun-only", args->sun_only,
+                    "With --times or --date: sun hours only (columns svf, sky_exposure, sun_hours), no sky model per moment");
+      cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table (needs a sun)");
+      cmd->callback([args] { run(*args); });
+      return cmd;
+    }};
 
 }  // namespace
 

@@ -29,9 +29,9 @@
 #include "cli/point_checks.h"
 #include "cli/point_job_args.h"
 #include "cli/provenance.h"
-#include "geometry/points/ground_grid.h"
-#include "geometry/mesh/height_field.h"
 #include "geometry/core/input_error.h"
+#include "geometry/mesh/height_field.h"
+#include "geometry/points/ground_grid.h"
 #include "geometry/visibility/sky_factors.h"
 #include "io/geo_raster.h"
 #include "io/mesh_reader.h"
@@ -88,7 +88,8 @@ void check_args(const MapArgs& a) {
   check_output_file("--out", a.out, inputs);
   if (!a.png.empty()) {
     check_output_file("--png", a.png, inputs);
-    if (std::filesystem::absolute(a.png) == std::filesystem::absolute(a.out)) throw InputError("map: --png and --out name the same file");
+    if (std::filesystem::absolute(a.png) == std::filesystem::absolute(a.out))
+      throw InputError("map: --png and --out name the same file");
   }
 }
 
@@ -104,9 +105,11 @@ std::string model_crs(const std::vector<MeshReadReport>& reports) {
   std::string crs;
   for (const MeshReadReport& r : reports) {
     if (r.crs.empty()) continue;
-    if (crs.empty()) crs = r.crs;
+    if (crs.empty())
+      crs = r.crs;
     else if (r.crs != crs)
-      std::fprintf(stderr, "map: warning: %s is in %s, the map in %s (the first file's)\n", r.file.c_str(), r.crs.c_str(), crs.c_str());
+      std::fprintf(stderr, "map: warning: %s is in %s, the map in %s (the first file's)\n", r.file.c_str(), r.crs.c_str(),
+                   crs.c_str());
   }
   return crs;
 }
@@ -177,9 +180,9 @@ MapGrid grid_from_dsm(const MapArgs& a, std::unique_ptr<Scene>& scene) {
     m.crs_name = dsm.crs_name;
   }
   if (!a.quiet)
-    std::fprintf(stderr, "map: DSM %s: %zu × %zu pixels of %s × %s m, %zu nodata; %zu triangles as pixel columns\n", a.dsm.c_str(),
-                 dsm.columns, dsm.rows, shortest(std::abs(f.dx)).c_str(), shortest(std::abs(f.dy)).c_str(), dsm.nodata_pixels,
-                 scene->soup().triangle_count());
+    std::fprintf(stderr, "map: DSM %s: %zu × %zu pixels of %s × %s m, %zu nodata; %zu triangles as pixel columns\n",
+                 a.dsm.c_str(), dsm.columns, dsm.rows, shortest(std::abs(f.dx)).c_str(), shortest(std::abs(f.dy)).c_str(),
+                 dsm.nodata_pixels, scene->soup().triangle_count());
   return m;
 }
 
@@ -188,7 +191,9 @@ void run(const MapArgs& a) {
   std::unique_ptr<Scene> scene;
   const MapGrid m = a.dsm.empty() ? grid_from_model(a, scene) : grid_from_dsm(a, scene);
   if (m.points.empty())
-    throw InputError("map: no pixel has a calculation point (for a city model: is the terrain named by a ground material, --ground-materials?)");
+    throw InputError(
+        "map: no pixel has a calculation point (for a city model: is the terrain named by a ground material, "
+        "--ground-materials?)");
   if (m.crs_wkt.empty())
     std::fprintf(stderr, "map: warning: the %s names no CRS: the GeoTIFF has none (give --crs EPSG:n)\n",
                  a.dsm.empty() ? "city model" : "DSM");
@@ -247,31 +252,33 @@ void run(const MapArgs& a) {
   }
 }
 
-CommandRegistration registration{"map", [](CLI::App& app) {
-  auto args = std::make_shared<MapArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "map",
-      "A GeoTIFF raster of exact sky view factors (or sky exposure) over a city model's ground, or over every\n"
-      "pixel of a digital surface model (each pixel a flat column of its height), with an optional\n"
-      "false-colour PNG and legend.");
-  cmd->add_option("--mesh", args->meshes, "City model or mesh file (repeatable): the map covers its ground");
-  cmd->add_option("--dsm", args->dsm, "Digital surface model raster (GeoTIFF or any GDAL raster; heights in metres)");
-  cmd->add_option("--spacing", args->spacing, "With --mesh: pixel size S in metres (pixel edges at multiples of S)");
-  cmd->add_option("--height", args->height, "With --mesh: points H metres above the ground (default 0)");
-  cmd->add_option("--bounds", args->bounds, "With --mesh: area XMIN,YMIN,XMAX,YMAX (default: the model's box)")->delimiter(',');
-  cmd->add_option("--ground-materials", args->ground_materials,
-                  "With --mesh: material / semantic names that are ground (default: the usual terrain classes)")
-      ->delimiter(',');
-  cmd->add_option("--lod", args->lod, "With --mesh: read city models at this LoD (default: each object's highest)");
-  cmd->add_option("--quantity", args->quantity, "svf (default) or sky_exposure");
-  cmd->add_option("--crs", args->crs, "CRS of the output (EPSG:n, WKT, ...; default: the model's or the DSM's own)");
-  cmd->add_option("--out", args->out, "Output GeoTIFF (Float32, nodata -9999), written atomically");
-  cmd->add_option("--png", args->png, "Also a false-colour PNG with a legend");
-  cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
-  cmd->add_flag("--quiet", args->quiet, "No progress or summary on stderr");
-  cmd->callback([args] { run(*args); });
-  return cmd;
-}};
+CommandRegistration registration{
+    "map", [](CLI::App& app) {
+      auto args = std::make_shared<MapArgs>();
+      CLI::App* cmd = app.add_subcommand(
+          "map",
+          "A GeoTIFF raster of exact sky view factors (or sky exposure) over a city model's ground, or over every\n"
+          "pixel of a digital surface model (each pixel a flat column of its height), with an optional\n"
+          "false-colour PNG and legend.");
+      cmd->add_option("--mesh", args->meshes, "City model or mesh file (repeatable): the map covers its ground");
+      cmd->add_option("--dsm", args->dsm, "Digital surface model raster (GeoTIFF or any GDAL raster; heights in metres)");
+      cmd->add_option("--spacing", args->spacing, "With --mesh: pixel size S in metres (pixel edges at multiples of S)");
+      cmd->add_option("--height", args->height, "With --mesh: points H metres above the ground (default 0)");
+      cmd->add_option("--bounds", args->bounds, "With --mesh: area XMIN,YMIN,XMAX,YMAX (default: the model's box)")
+          ->delimiter(',');
+      cmd->add_option("--ground-materials", args->ground_materials,
+                      "With --mesh: material / semantic names that are ground (default: the usual terrain classes)")
+          ->delimiter(',');
+      cmd->add_option("--lod", args->lod, "With --mesh: read city models at this LoD (default: each object's highest)");
+      cmd->add_option("--quantity", args->quantity, "svf (default) or sky_exposure");
+      cmd->add_option("--crs", args->crs, "CRS of the output (EPSG:n, WKT, ...; default: the model's or the DSM's own)");
+      cmd->add_option("--out", args->out, "Output GeoTIFF (Float32, nodata -9999), written atomically");
+      cmd->add_option("--png", args->png, "Also a false-colour PNG with a legend");
+      cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
+      cmd->add_flag("--quiet", args->quiet, "No progress or summary on stderr");
+      cmd->callback([args] { run(*args); });
+      return cmd;
+    }};
 
 }  // namespace
 

@@ -50,7 +50,8 @@ void run(const PaintArgs& a) {
   if (a.meshes.empty()) throw InputError("paint: at least one --mesh FILE is required (as given to points facades)");
   if (a.values.empty()) throw InputError("paint: --values RESULTS.csv is required (points with a face column and values)");
   if (a.out.empty()) throw InputError("paint: --out MODEL.ply is required");
-  if (std::filesystem::path(a.out).extension() != ".ply") throw InputError("paint: --out " + a.out + ": the file name must end in .ply");
+  if (std::filesystem::path(a.out).extension() != ".ply")
+    throw InputError("paint: --out " + a.out + ": the file name must end in .ply");
   std::vector<std::pair<std::string, std::string>> inputs{{"--values", a.values}};
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
   check_output_file("--out", a.out, inputs);
@@ -85,8 +86,10 @@ void run(const PaintArgs& a) {
   if (painted == 0) throw InputError(a.values + ": no rows: nothing to paint");
   // Fractions use the map's rounded range; other quantities (W/m², hours) their exact range.
   double c_lo = lo, c_hi = hi;
-  if (lo >= 0 && hi <= 1) map_range(values, kNoData, c_lo, c_hi);
-  else if (!(c_hi > c_lo)) c_hi = c_lo + 1;
+  if (lo >= 0 && hi <= 1)
+    map_range(values, kNoData, c_lo, c_hi);
+  else if (!(c_hi > c_lo))
+    c_hi = c_lo + 1;
   std::vector<std::array<std::uint8_t, 3>> rgb(nt, std::array<std::uint8_t, 3>{200, 200, 200});
   for (std::size_t t = 0; t < nt; ++t)
     if (count[t] > 0) {
@@ -97,9 +100,10 @@ void run(const PaintArgs& a) {
   ply.soup = &soup;
   ply.values = values;
   ply.rgb = rgb;
-  ply.comments = {"skyband " SKYBAND_VERSION ": face values of column '" + a.column + "' of " + a.values,
-                  "value = mean over the face's points; nodata " + fixed(kNoData) + " (faces without points, light grey)",
-                  "colour = viridis over [" + fixed(c_lo) + ", " + fixed(c_hi) + "]; values range [" + fixed(lo) + ", " + fixed(hi) + "]"};
+  ply.comments = {
+      "skyband " SKYBAND_VERSION ": face values of column '" + a.column + "' of " + a.values,
+      "value = mean over the face's points; nodata " + fixed(kNoData) + " (faces without points, light grey)",
+      "colour = viridis over [" + fixed(c_lo) + ", " + fixed(c_hi) + "]; values range [" + fixed(lo) + ", " + fixed(hi) + "]"};
   std::string command = invocation();
   std::replace(command.begin(), command.end(), '\n', ' ');
   std::replace(command.begin(), command.end(), '\r', ' ');
@@ -111,21 +115,22 @@ void run(const PaintArgs& a) {
                  table.rows.size(), a.column.c_str(), fixed(lo).c_str(), fixed(hi).c_str(), a.out.c_str());
 }
 
-CommandRegistration registration{"paint", [](CLI::App& app) {
-  auto args = std::make_shared<PaintArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "paint",
-      "Results on the model: the meshes written as PLY with each face's value (the mean of its points') and\n"
-      "colour, from a points file with a face column (skyband points facades, then svf or irradiance).");
-  cmd->add_option("--mesh", args->meshes, "Mesh or city model file, as given to points facades (repeatable)");
-  cmd->add_option("--lod", args->lod, "City models read at this LoD, as for points facades");
-  cmd->add_option("--values", args->values, "Points CSV with a face column and the values");
-  cmd->add_option("--column", args->column, "The column to paint (default svf)");
-  cmd->add_option("--out", args->out, "Output PLY (binary), written atomically");
-  cmd->add_flag("--quiet", args->quiet, "No report on stderr");
-  cmd->callback([args] { run(*args); });
-  return cmd;
-}};
+CommandRegistration registration{
+    "paint", [](CLI::App& app) {
+      auto args = std::make_shared<PaintArgs>();
+      CLI::App* cmd = app.add_subcommand(
+          "paint",
+          "Results on the model: the meshes written as PLY with each face's value (the mean of its points') and\n"
+          "colour, from a points file with a face column (skyband points facades, then svf or irradiance).");
+      cmd->add_option("--mesh", args->meshes, "Mesh or city model file, as given to points facades (repeatable)");
+      cmd->add_option("--lod", args->lod, "City models read at this LoD, as for points facades");
+      cmd->add_option("--values", args->values, "Points CSV with a face column and the values");
+      cmd->add_option("--column", args->column, "The column to paint (default svf)");
+      cmd->add_option("--out", args->out, "Output PLY (binary), written atomically");
+      cmd->add_flag("--quiet", args->quiet, "No report on stderr");
+      cmd->callback([args] { run(*args); });
+      return cmd;
+    }};
 
 }  // namespace
 

@@ -32,9 +32,9 @@
 #include "cli/point_checks.h"
 #include "cli/point_job_args.h"
 #include "cli/provenance.h"
+#include "geometry/core/input_error.h"
 #include "geometry/points/facade_points.h"
 #include "geometry/points/ground_grid.h"
-#include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
 #include "io/points_csv.h"
 #include "lighting/climate/climate_irradiation.h"
@@ -116,9 +116,12 @@ void run_grid(const GridArgs& a) {
 void parse_surfaces(const std::vector<std::string>& names, FacadePointsOptions& opt) {
   opt.walls = opt.roofs = false;
   for (const std::string& n : names) {
-    if (n == "wall" || n == "walls") opt.walls = true;
-    else if (n == "roof" || n == "roofs") opt.roofs = true;
-    else throw InputError("--surfaces " + n + ": unknown surface; give wall, roof or wall,roof");
+    if (n == "wall" || n == "walls")
+      opt.walls = true;
+    else if (n == "roof" || n == "roofs")
+      opt.roofs = true;
+    else
+      throw InputError("--surfaces " + n + ": unknown surface; give wall, roof or wall,roof");
   }
 }
 
@@ -147,10 +150,10 @@ void run_facades(const FacadeArgs& a) {
   for (const FacadePoint& p : fp.points) {
     const std::uint32_t m = p.triangle < soup.triangle_material.size() ? soup.triangle_material[p.triangle] : 0;
     const std::string material = m < soup.material_names.size() ? soup.material_names[m] : "";
-    table.rows.push_back({shortest(p.position.x()), shortest(p.position.y()), shortest(p.position.z()), shortest(p.normal.x() + 0.0),
-                          shortest(p.normal.y() + 0.0), shortest(p.normal.z() + 0.0), fp.group_names[p.group],
-                          p.surface == FacadeSurface::roof ? "roof" : "wall", material, std::to_string(p.triangle),
-                          std::to_string(p.iu), std::to_string(p.iv)});
+    table.rows.push_back({shortest(p.position.x()), shortest(p.position.y()), shortest(p.position.z()),
+                          shortest(p.normal.x() + 0.0), shortest(p.normal.y() + 0.0), shortest(p.normal.z() + 0.0),
+                          fp.group_names[p.group], p.surface == FacadeSurface::roof ? "roof" : "wall", material,
+                          std::to_string(p.triangle), std::to_string(p.iu), std::to_string(p.iv)});
     table.points.push_back({p.position, p.normal});
   }
   write_points_csv(a.out, table, {}, {});
@@ -158,10 +161,12 @@ void run_facades(const FacadeArgs& a) {
   std::fprintf(stderr,
                "points facades: %zu cell centres at %s m on %zu faces: %zu points %s m out; left out: %zu enclosed on both "
                "sides (party or interior walls), %zu covered by a surface within %s m in front, %zu under the terrain, "
-               "%zu in front of the face but inside a building, %zu facing down, %zu undecided; %zu zero-area faces; outward by the %s; wrote %s\n",
+               "%zu in front of the face but inside a building, %zu facing down, %zu undecided; %zu zero-area faces; outward by "
+               "the %s; wrote %s\n",
                fp.centres, shortest(a.spacing).c_str(), fp.faces, fp.points.size(), shortest(a.offset).c_str(), fp.enclosed,
-               fp.covered, shortest(a.offset + 0.01).c_str(), fp.underground, fp.inside, fp.facing_down, fp.undecided, fp.zero_area,
-               fp.groups_are_objects ? "city objects" : "connected components (the model has no objects)", a.out.c_str());
+               fp.covered, shortest(a.offset + 0.01).c_str(), fp.underground, fp.inside, fp.facing_down, fp.undecided,
+               fp.zero_area, fp.groups_are_objects ? "city objects" : "connected components (the model has no objects)",
+               a.out.c_str());
   if (fp.from_winding > 0)
     std::fprintf(stderr,
                  "points facades: warning: %zu points on surfaces open on both sides (no enclosing building found): outward "
@@ -171,46 +176,48 @@ void run_facades(const FacadeArgs& a) {
     std::fprintf(stderr, "points facades: warning: no point: does the model have walls (or roofs with --surfaces roof)?\n");
 }
 
-CommandRegistration registration{"points", [](CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("points", "Make calculation points for svf and irradiance");
-  cmd->require_subcommand(1);
-  auto args = std::make_shared<GridArgs>();
-  CLI::App* grid = cmd->add_subcommand(
-      "grid",
-      "A ground grid: cell centres of an S-aligned raster over the model, H above the ground surface over each,\n"
-      "none inside or under a building. Columns x,y,z,nx,ny,nz,ix,iy,ground.");
-  grid->add_option("--mesh", args->meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON); repeat for several")
-      ->check(CLI::ExistingFile);
-  grid->add_option("--spacing", args->spacing, "Grid spacing S in metres");
-  grid->add_option("--height", args->height, "Height of the points above the ground in metres (default 0: on it)");
-  grid->add_option("--bounds", args->bounds, "Area XMIN,YMIN,XMAX,YMAX in the model's coordinates (default: its box)")
-      ->delimiter(',');
-  grid->add_option("--ground-materials", args->ground_materials,
-                   "Material names (any case) of the ground surfaces (default: ground, terrain, road, water, forest, grass,\n"
-                   "landuse, ...; a model without any stands on the plane of its lowest z)")
-      ->delimiter(',');
-  grid->add_option("--lod", args->lod, "City models: read every object at this LoD (default: each object's highest)");
-  grid->add_option("--out", args->out, "Output points CSV, written atomically");
-  grid->add_flag("--quiet", args->quiet, "No mesh report on stderr");
-  grid->callback([args] { run_grid(*args); });
+CommandRegistration registration{
+    "points", [](CLI::App& app) {
+      CLI::App* cmd = app.add_subcommand("points", "Make calculation points for svf and irradiance");
+      cmd->require_subcommand(1);
+      auto args = std::make_shared<GridArgs>();
+      CLI::App* grid = cmd->add_subcommand(
+          "grid",
+          "A ground grid: cell centres of an S-aligned raster over the model, H above the ground surface over each,\n"
+          "none inside or under a building. Columns x,y,z,nx,ny,nz,ix,iy,ground.");
+      grid->add_option("--mesh", args->meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON); repeat for several")
+          ->check(CLI::ExistingFile);
+      grid->add_option("--spacing", args->spacing, "Grid spacing S in metres");
+      grid->add_option("--height", args->height, "Height of the points above the ground in metres (default 0: on it)");
+      grid->add_option("--bounds", args->bounds, "Area XMIN,YMIN,XMAX,YMAX in the model's coordinates (default: its box)")
+          ->delimiter(',');
+      grid->add_option("--ground-materials", args->ground_materials,
+                       "Material names (any case) of the ground surfaces (default: ground, terrain, road, water, forest, grass,\n"
+                       "landuse, ...; a model without any stands on the plane of its lowest z)")
+          ->delimiter(',');
+      grid->add_option("--lod", args->lod, "City models: read every object at this LoD (default: each object's highest)");
+      grid->add_option("--out", args->out, "Output points CSV, written atomically");
+      grid->add_flag("--quiet", args->quiet, "No mesh report on stderr");
+      grid->callback([args] { run_grid(*args); });
 
-  auto fargs = std::make_shared<FacadeArgs>();
-  CLI::App* facades = cmd->add_subcommand(
-      "facades",
-      "Facade points: cell centres of an S grid on every wall (and roof), D along the outward normal, none on\n"
-      "party walls, behind another surface or inside a building. Columns x,y,z,nx,ny,nz,object,surface,material,face,iu,iv.");
-  facades->add_option("--mesh", fargs->meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON); repeat for several")
-      ->check(CLI::ExistingFile);
-  facades->add_option("--spacing", fargs->spacing, "Grid spacing S in metres, in each face's plane");
-  facades->add_option("--offset", fargs->offset, "Distance D of the points in front of their face in metres (default 0.1)");
-  facades->add_option("--surfaces", fargs->surfaces, "Surfaces to cover: wall, roof or wall,roof (default wall)")->delimiter(',');
-  facades->add_option("--lod", fargs->lod, "City models: read every object at this LoD (default: each object's highest)");
-  facades->add_option("--out", fargs->out, "Output points CSV, written atomically");
-  facades->add_option("--threads", fargs->threads, "Worker threads (default 0: all cores; the output does not depend on it)");
-  facades->add_flag("--quiet", fargs->quiet, "No mesh report on stderr");
-  facades->callback([fargs] { run_facades(*fargs); });
-  return cmd;
-}};
+      auto fargs = std::make_shared<FacadeArgs>();
+      CLI::App* facades = cmd->add_subcommand(
+          "facades",
+          "Facade points: cell centres of an S grid on every wall (and roof), D along the outward normal, none on\n"
+          "party walls, behind another surface or inside a building. Columns x,y,z,nx,ny,nz,object,surface,material,face,iu,iv.");
+      facades->add_option("--mesh", fargs->meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON); repeat for several")
+          ->check(CLI::ExistingFile);
+      facades->add_option("--spacing", fargs->spacing, "Grid spacing S in metres, in each face's plane");
+      facades->add_option("--offset", fargs->offset, "Distance D of the points in front of their face in metres (default 0.1)");
+      facades->add_option("--surfaces", fargs->surfaces, "Surfaces to cover: wall, roof or wall,roof (default wall)")
+          ->delimiter(',');
+      facades->add_option("--lod", fargs->lod, "City models: read every object at this LoD (default: each object's highest)");
+      facades->add_option("--out", fargs->out, "Output points CSV, written atomically");
+      facades->add_option("--threads", fargs->threads, "Worker threads (default 0: all cores; the output does not depend on it)");
+      facades->add_flag("--quiet", fargs->quiet, "No mesh report on stderr");
+      facades->callback([fargs] { run_facades(*fargs); });
+      return cmd;
+    }};
 
 }  // namespace
 

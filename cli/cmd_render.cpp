@@ -19,8 +19,8 @@
 #include "cli/render_output.h"
 #include "geometry/core/input_error.h"
 #include "io/scene_file.h"
-#include "render/renderer.h"
 #include "lighting/sun/sun.h"
+#include "render/renderer.h"
 
 namespace skyband::cli {
 namespace {
@@ -63,7 +63,8 @@ void run_render(const RenderOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> report;
   const Scene scene(load_scene_geometry(desc, &report));
-  if (!o.quiet) std::fprintf(stderr, "scene: %zu triangles from %zu mesh file(s)\n", scene.soup().triangle_count(), desc.meshes.size());
+  if (!o.quiet)
+    std::fprintf(stderr, "scene: %zu triangles from %zu mesh file(s)\n", scene.soup().triangle_count(), desc.meshes.size());
   const std::vector<const Material*> mats =
       materials_for_slots(scene.soup().material_names, desc.default_material, desc.file.string());
   GeometryPass pass = trace_geometry(scene, camera, settings);
@@ -72,16 +73,18 @@ void run_render(const RenderOptions& o) {
   const RenderLayers layers = shade(pass, sky, mats, settings);
   const double t_shade = since(t1);
   std::optional<double> exposure;
-  if (o.o_exposure->count()) exposure = o.exposure;
-  else if (desc.exposure) exposure = desc.exposure;
+  if (o.o_exposure->count())
+    exposure = o.exposure;
+  else if (desc.exposure)
+    exposure = desc.exposure;
   auto attrs = render_attributes(sky, settings, "skyband_scene", desc.file.string());
   const double e = write_render(exr, layers, attrs, exposure);
   if (!o.quiet)
     std::fprintf(stderr,
                  "rendered %dx%d, %zu surface samples: trace %.2f s, visibility %.2f s, sun %.2f s, shading %.2f s, "
                  "total %.2f s; PNG exposure %.4g\nwrote %s and %s\n",
-                 layers.width, layers.height, pass.surfaces.size(), pass.trace_seconds, pass.visibility_seconds,
-                 pass.sun_seconds, t_shade, since(t0), e, exr.string().c_str(),
+                 layers.width, layers.height, pass.surfaces.size(), pass.trace_seconds, pass.visibility_seconds, pass.sun_seconds,
+                 t_shade, since(t0), e, exr.string().c_str(),
                  std::filesystem::path(exr).replace_extension(".png").string().c_str());
 }
 

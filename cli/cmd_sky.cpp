@@ -39,15 +39,15 @@
 #include "io/exr_writer.h"
 #include "io/mesh_reader.h"
 #include "io/png_writer.h"
-#include "lighting/spectrum/colour.h"
 #include "lighting/sky/sky_model.h"
+#include "lighting/spectrum/colour.h"
 
 namespace skyband::cli {
 namespace {
 
 struct SkyOptions {
   SunSkyOptions sun_sky;
-  std::vector<double> at, normal;   // --at X,Y,Z, --normal NX,NY,NZ: the fisheye of one point of --mesh
+  std::vector<double> at, normal;  // --at X,Y,Z, --normal NX,NY,NZ: the fisheye of one point of --mesh
   std::vector<std::string> meshes;
   std::string out;
   int size = 512;
@@ -103,7 +103,7 @@ void run_sky(const SkyOptions& o) {
     if (!std::filesystem::is_directory(status))
       throw InputError("--out '" + o.out + "': folder '" + dir.string() + "' " +
                        (ec && status.type() != std::filesystem::file_type::not_found ? "cannot be used: " + ec.message()
-                                                                                       : std::string("does not exist")));
+                                                                                     : std::string("does not exist")));
     if (o.size < 16 || o.size > 8192) throw InputError("--size " + std::to_string(o.size) + ": must be in [16, 8192] pixels");
   }
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))
@@ -122,7 +122,8 @@ void run_sky(const SkyOptions& o) {
       n.normalize();
     }
     const Vec3 p(o.at[0], o.at[1], o.at[2]);
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) throw InputError("--at: coordinates must be finite");
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      throw InputError("--at: coordinates must be finite");
     at = QueryPoint{p, n};
   }
   if (o.sun_path && !at) throw InputError("--sun-path draws on the fisheye of a point: give --at X,Y,Z and --mesh");
@@ -167,7 +168,8 @@ void run_sky(const SkyOptions& o) {
                           {"global_horizontal_illuminance_lx", luminous(global)},
                           {"zenith", {{"luminance_cd_m2", luminous(zenith)}, {"chromaticity_xy", xy_json(zenith_xyz)}}}};
   if (const CieSky* c = sky.cie())
-    sky_j["cie"] = {{"type", c->type()}, {"zenith_luminance_cd_m2", c->zenith_luminance_cd_m2()},
+    sky_j["cie"] = {{"type", c->type()},
+                    {"zenith_luminance_cd_m2", c->zenith_luminance_cd_m2()},
                     {"zenith_luminance_source", spec.zenith_luminance_cd_m2 ? "user" : "gensky-style formula"}};
   j["sky"] = sky_j;
   j["atmosphere"] = {{"rayleigh_optical_depth",
@@ -205,10 +207,12 @@ void run_sky(const SkyOptions& o) {
         {"skyband_point", "x=" + fmt(at->position.x()) + " y=" + fmt(at->position.y()) + " z=" + fmt(at->position.z()) +
                               " normal=" + fmt(at->normal.x()) + "," + fmt(at->normal.y()) + "," + fmt(at->normal.z())},
         {"skyband_sky", sky.describe()},
-        {"skyband_layers", "sky: linear sRGB radiance (W m-2 sr-1, as the open-sky fisheye) where the point sees the sky, 0 "
-                           "where the scene or its own face hides it; visible: 1 or 0"},
-        {"skyband_projection", "equi-angular fisheye: radius proportional to zenith angle, zenith at centre, horizon on "
-                               "the inscribed circle, north up, east left (seen from below)"}};
+        {"skyband_layers",
+         "sky: linear sRGB radiance (W m-2 sr-1, as the open-sky fisheye) where the point sees the sky, 0 "
+         "where the scene or its own face hides it; visible: 1 or 0"},
+        {"skyband_projection",
+         "equi-angular fisheye: radius proportional to zenith angle, zenith at centre, horizon on "
+         "the inscribed circle, north up, east left (seen from below)"}};
     write_exr(exr_path, o.size, o.size, layers, attrs, o.half ? ExrPixelType::Half : ExrPixelType::Float);
     write_png_rgb8(png_path, o.size, o.size, f.picture);
     j["point"] = {{"position", {at->position.x(), at->position.y(), at->position.z()}},
@@ -247,10 +251,12 @@ void run_sky(const SkyOptions& o) {
         {"skyband_sun", "altitude_deg=" + fmt(sun.altitude_deg) + " azimuth_deg=" + fmt(sun.azimuth_deg) + " (" +
                             sun.source.value("method", std::string()) + ")"},
         {"skyband_sky", sky.describe()},
-        {"skyband_units", "linear sRGB (Rec.709, D65) of CIE 1931 XYZ = integral of L(lambda)*cmf over 380-780 nm; "
-                          "L in W m-2 sr-1 nm-1 -> pixel unit W m-2 sr-1; luminance cd m-2 = 683*Y"},
-        {"skyband_projection", "equi-angular fisheye: radius proportional to zenith angle, zenith at centre, horizon on "
-                               "the inscribed circle, north up, east left (seen from below); outside = 0; sun disc not drawn"},
+        {"skyband_units",
+         "linear sRGB (Rec.709, D65) of CIE 1931 XYZ = integral of L(lambda)*cmf over 380-780 nm; "
+         "L in W m-2 sr-1 nm-1 -> pixel unit W m-2 sr-1; luminance cd m-2 = 683*Y"},
+        {"skyband_projection",
+         "equi-angular fisheye: radius proportional to zenith angle, zenith at centre, horizon on "
+         "the inscribed circle, north up, east left (seen from below); outside = 0; sun disc not drawn"},
         {"skyband_conventions", "world x east, y north, z up; azimuth clockwise from north"},
         {"skyband_png_exposure", fmt(exposure)}};
     write_exr(exr_path, n, n, std::span<const ImageLayer>(&layer, 1), attrs, o.half ? ExrPixelType::Half : ExrPixelType::Float);
@@ -276,7 +282,8 @@ void run_sky(const SkyOptions& o) {
                 j["point"]["svf"].get<double>(), j["point"]["sky_exposure"].get<double>());
   if (at && o.sun_path)
     std::printf("sun path  %zu of %zu ten-minute marks above the horizon seen from the point (~%.1f h of sun)\n",
-                j["point"]["sun_path"]["marks_seen"].get<std::size_t>(), j["point"]["sun_path"]["marks_above_horizon"].get<std::size_t>(),
+                j["point"]["sun_path"]["marks_seen"].get<std::size_t>(),
+                j["point"]["sun_path"]["marks_above_horizon"].get<std::size_t>(),
                 j["point"]["sun_path"]["sun_hours_estimate"].get<double>());
   if (!exr_path.empty()) std::printf("wrote     %s and %s\n", exr_path.string().c_str(), png_path.string().c_str());
 }
@@ -291,7 +298,8 @@ CLI::App* setup_sky(CLI::App& app) {
       "Fisheye (--out): equi-angular, zenith at the centre, north up, east left (sky seen from below).");
   o->sun_sky.add_to(sub);
   sub->add_option("--out", o->out, "Write an HDR fisheye FILE.exr and a tone-mapped FILE.png beside it");
-  sub->add_option("--at", o->at, "With --mesh: the fisheye of what this point X,Y,Z sees (hidden sky grey, its horizon red, N/E/S/W)")
+  sub->add_option("--at", o->at,
+                  "With --mesh: the fisheye of what this point X,Y,Z sees (hidden sky grey, its horizon red, N/E/S/W)")
       ->delimiter(',');
   sub->add_option("--normal", o->normal, "With --at: the face's normal NX,NY,NZ (default 0,0,1)")->delimiter(',');
   sub->add_option("--mesh", o->meshes, "With --at: mesh or city model file; repeat for several")->check(CLI::ExistingFile);
@@ -299,7 +307,8 @@ CLI::App* setup_sky(CLI::App& app) {
                 "With --at and --lat/--lon/--time: draw the sun's path through that day, every 10 min (larger dots at the\n"
                 "hours; yellow where the point sees the sun, dark orange where it is hidden)");
   sub->add_option("--size", o->size, "Fisheye image size in pixels (default 512)");
-  o->o_exposure = sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic, log-average key 0.18)");
+  o->o_exposure =
+      sub->add_option("--exposure", o->exposure, "PNG exposure multiplier (default: automatic, log-average key 0.18)");
   sub->add_flag("--half", o->half, "Store the EXR as half floats (default 32-bit float)");
   sub->add_flag("--json", o->json, "Print one JSON object to stdout instead of the summary");
   sub->callback([o] { run_sky(*o); });

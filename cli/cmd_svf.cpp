@@ -26,11 +26,11 @@
 #include "cli/point_job_args.h"
 #include "cli/provenance.h"
 #include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/core/input_error.h"
 #include "geometry/horizon/column_scene.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/horizon/horizon_profile.h"
-#include "geometry/bands/sky_integral.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/atomic_file.h"
 #include "io/points_csv.h"
 
@@ -55,13 +55,13 @@ void write_horizon(const SvfArgs& a, const Scene& scene, const PointsTable& tabl
     std::fprintf(f, "point,azimuth_deg,elevation_deg\n");
     bool ok = true;
     try {
-      for_each_horizon_profile(scene, table.points, opt, a.horizon_step, a.job.threads,
-                               [&](std::size_t d, std::size_t t) { progress(d, t); },
-                               [&](std::size_t first, std::size_t count, std::span<const double> e) {
-                                 for (std::size_t i = 0; i < count; ++i)
-                                   for (std::size_t k = 0; k < m; ++k)
-                                     ok = std::fprintf(f, "%zu,%.10g,%.6f\n", first + i, double(k) * a.horizon_step, e[i * m + k]) > 0 && ok;
-                               });
+      for_each_horizon_profile(
+          scene, table.points, opt, a.horizon_step, a.job.threads, [&](std::size_t d, std::size_t t) { progress(d, t); },
+          [&](std::size_t first, std::size_t count, std::span<const double> e) {
+            for (std::size_t i = 0; i < count; ++i)
+              for (std::size_t k = 0; k < m; ++k)
+                ok = std::fprintf(f, "%zu,%.10g,%.6f\n", first + i, double(k) * a.horizon_step, e[i * m + k]) > 0 && ok;
+          });
     } catch (...) {
       std::fclose(f);
       throw;
@@ -71,7 +71,9 @@ void write_horizon(const SvfArgs& a, const Scene& scene, const PointsTable& tabl
   });
 }
 
-std::string method_summary(const SkyFactorsRun& run) { return cli::method_summary(run.by_horizon, run.by_exact, run.by_bands); }
+std::string method_summary(const SkyFactorsRun& run) {
+  return cli::method_summary(run.by_horizon, run.by_exact, run.by_bands);
+}
 
 void run_demo(const SvfArgs& a) {
   const DemoScene demo = make_demo_scene();
@@ -82,15 +84,15 @@ void run_demo(const SvfArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.job.method(), a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string bands = run.by_bands == 0         ? ""
+  const std::string bands = run.by_bands == 0   ? ""
                             : opt.tolerance > 0 ? " (bands: adaptive, tolerance " + std::to_string(opt.tolerance) + ")"
                                                 : " (bands: " + std::to_string(opt.bands) + " fixed)";
   std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s%s\n", demo.soup.triangle_count(),
               pts.size(), method_summary(run).c_str(), bands.c_str());
   std::printf("%-36s %8s %8s %8s %6s %6s\n", "point", "x [m]", "y [m]", "z [m]", "svf", "sky_exp");
   for (std::size_t i = 0; i < pts.size(); ++i)
-    std::printf("%-36s %8.1f %8.1f %8.1f %6.4f %6.4f\n", demo.points[i].name.c_str(), pts[i].position.x(),
-                pts[i].position.y(), pts[i].position.z(), run.factors[i].svf, run.factors[i].sky_exposure);
+    std::printf("%-36s %8.1f %8.1f %8.1f %6.4f %6.4f\n", demo.points[i].name.c_str(), pts[i].position.x(), pts[i].position.y(),
+                pts[i].position.z(), run.factors[i].svf, run.factors[i].sky_exposure);
   std::printf("%.3f ms\n", seconds * 1e3);
 }
 
@@ -135,25 +137,26 @@ void run(const SvfArgs& a) {
   }
 }
 
-CommandRegistration registration{"svf", [](CLI::App& app) {
-  auto args = std::make_shared<SvfArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "svf",
-      "Sky view factor and sky exposure at calculation points, exact for any mesh (open, broken,\n"
-      "overhanging; the horizon of closed extruded buildings where it applies, the exact union of the\n"
-      "occluders' projections elsewhere).\n"
-      "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
-      "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
-  args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
-  cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
-  cmd->add_option("--horizon", args->horizon,
-                  "Also write every point's horizon profile: CSV rows point,azimuth_deg,elevation_deg (point: 0-based\n"
-                  "row of the points file; azimuth clockwise from north; the highest occluded elevation, sky below an\n"
-                  "overhang not counted), written atomically");
-  cmd->add_option("--horizon-step", args->horizon_step, "Azimuth step of --horizon in degrees (default 1)");
-  cmd->callback([args] { run(*args); });
-  return cmd;
-}};
+CommandRegistration registration{
+    "svf", [](CLI::App& app) {
+      auto args = std::make_shared<SvfArgs>();
+      CLI::App* cmd =
+          app.add_subcommand("svf",
+                             "Sky view factor and sky exposure at calculation points, exact for any mesh (open, broken,\n"
+                             "overhanging; the horizon of closed extruded buildings where it applies, the exact union of the\n"
+                             "occluders' projections elsewhere).\n"
+                             "Coordinates: metres, z up (x east, y north). Output columns: svf (cosine-weighted, 1 for an open\n"
+                             "horizontal face, 0.5 for an open wall) and sky_exposure (visible sky solid angle / 2π).");
+      args->job.add_to(cmd, "Output CSV (input rows + svf, sky_exposure), written atomically");
+      cmd->add_flag("--demo", args->demo, "Run on the built-in demo street block and print a table");
+      cmd->add_option("--horizon", args->horizon,
+                      "Also write every point's horizon profile: CSV rows point,azimuth_deg,elevation_deg (point: 0-based\n"
+                      "row of the points file; azimuth clockwise from north; the highest occluded elevation, sky below an\n"
+                      "overhang not counted), written atomically");
+      cmd->add_option("--horizon-step", args->horizon_step, "Azimuth step of --horizon in degrees (default 1)");
+      cmd->callback([args] { run(*args); });
+      return cmd;
+    }};
 
 }  // namespace
 

@@ -21,9 +21,7 @@ struct CommandEntry {
 std::vector<CommandEntry>& command_registry();
 
 struct CommandRegistration {
-  CommandRegistration(std::string name, CommandSetup setup) {
-    command_registry().push_back({std::move(name), std::move(setup)});
-  }
+  CommandRegistration(std::string name, CommandSetup setup) { command_registry().push_back({std::move(name), std::move(setup)}); }
 };
 
 // The command line as typed (for provenance in output headers).

@@ -68,7 +68,9 @@ const Glyph* glyph_of(char c) {
 
 }  // namespace
 
-int text_width(const std::string& text, int scale) { return static_cast<int>(text.size()) * 6 * scale; }
+int text_width(const std::string& text, int scale) {
+  return static_cast<int>(text.size()) * 6 * scale;
+}
 
 void draw_text(SheetImage& img, int x, int y, const std::string& text, float level, int scale) {
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -87,7 +89,9 @@ void draw_text(SheetImage& img, int x, int y, const std::string& text, float lev
             for (int sx = 0; sx < scale; ++sx) {
               const int px = gx + col * scale + sx, py = y + r * scale + sy;
               if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
-              float* p = &img.rgb[(static_cast<std::size_t>(py) * static_cast<std::size_t>(img.width) + static_cast<std::size_t>(px)) * 3];
+              float* p =
+                  &img.rgb[(static_cast<std::size_t>(py) * static_cast<std::size_t>(img.width) + static_cast<std::size_t>(px)) *
+                           3];
               p[0] = p[1] = p[2] = level;
             }
         }
@@ -124,10 +128,14 @@ SheetImage make_contact_sheet(const std::vector<SheetTile>& tiles, int columns) 
     for (int y = 0; y < t.height; ++y)
       for (int x = 0; x < t.width; ++x)
         for (int c = 0; c < 3; ++c)
-          s.rgb[((static_cast<std::size_t>(cy + kLabel + y)) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(cx + x)) * 3 +
+          s.rgb[((static_cast<std::size_t>(cy + kLabel + y)) * static_cast<std::size_t>(s.width) +
+                 static_cast<std::size_t>(cx + x)) *
+                    3 +
                 static_cast<std::size_t>(c)] =
-              static_cast<float>(t.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x)) * 3 +
-                                       static_cast<std::size_t>(c)] * t.exposure);
+              static_cast<float>(
+                  t.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x)) * 3 +
+                        static_cast<std::size_t>(c)] *
+                  t.exposure);
   }
   return s;
 }

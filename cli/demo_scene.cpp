@@ -10,10 +10,10 @@ DemoScene make_demo_scene() {
   s.triangles = {{0, 1, 2}, {0, 2, 3}};
   // A street running north–south (x ∈ [−6, 6], 12 m wide) between two rows of buildings,
   // 20 m deep, with a 10 m cross street at y ∈ [−5, 5] on the east side.
-  append_box(s, Vec3(-26, -60, 0), Vec3(-6, 60, 18));   // west row, 18 m
-  append_box(s, Vec3(6, -60, 0), Vec3(26, -5, 12));     // east row south, 12 m
-  append_box(s, Vec3(6, 5, 0), Vec3(26, 60, 24));       // east row north, 24 m
-  append_box(s, Vec3(30, -20, 0), Vec3(40, 20, 30));    // a tower behind the east row
+  append_box(s, Vec3(-26, -60, 0), Vec3(-6, 60, 18));  // west row, 18 m
+  append_box(s, Vec3(6, -60, 0), Vec3(26, -5, 12));    // east row south, 12 m
+  append_box(s, Vec3(6, 5, 0), Vec3(26, 60, 24));      // east row north, 24 m
+  append_box(s, Vec3(30, -20, 0), Vec3(40, 20, 30));   // a tower behind the east row
   const Vec3 up(0, 0, 1);
   d.points = {
       {"open ground far away", {Vec3(-80, -80, 0), up}},

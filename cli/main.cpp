@@ -20,7 +20,9 @@ std::vector<CommandEntry>& command_registry() {
 }
 
 static std::string g_invocation;
-const std::string& invocation() { return g_invocation; }
+const std::string& invocation() {
+  return g_invocation;
+}
 
 namespace {
 
@@ -92,9 +94,9 @@ int main(int argc, char** argv) {
     if (i) cli::g_invocation += ' ';
     cli::g_invocation += argv[i];
   }
-  CLI::App app{
-      "skyband " SKYBAND_VERSION " — exact sky visibility and spectral sun + sky shading of outdoor scenes.\n"
-      "Units: metres, z up (x east, y north); azimuths clockwise from north; radiance W·m⁻²·sr⁻¹."};
+  CLI::App app{"skyband " SKYBAND_VERSION
+               " — exact sky visibility and spectral sun + sky shading of outdoor scenes.\n"
+               "Units: metres, z up (x east, y north); azimuths clockwise from north; radiance W·m⁻²·sr⁻¹."};
   app.set_version_flag("--version", std::string("skyband ") + SKYBAND_VERSION);
   app.require_subcommand(1);
   auto& entries = cli::command_registry();

@@ -24,20 +24,22 @@ constexpr Rgb8 kInk{20, 20, 20};
 Rgb8 viridis(double t) {
   // matplotlib's viridis at t = 0, 1/8, ..., 1 (van der Walt and Smith 2015).
   static constexpr std::array<std::array<double, 3>, 9> kSamples{{{68, 1, 84},
-                                                                   {71, 44, 122},
-                                                                   {59, 81, 139},
-                                                                   {44, 113, 142},
-                                                                   {33, 144, 141},
-                                                                   {39, 173, 129},
-                                                                   {92, 200, 99},
-                                                                   {170, 220, 50},
-                                                                   {253, 231, 37}}};
+                                                                  {71, 44, 122},
+                                                                  {59, 81, 139},
+                                                                  {44, 113, 142},
+                                                                  {33, 144, 141},
+                                                                  {39, 173, 129},
+                                                                  {92, 200, 99},
+                                                                  {170, 220, 50},
+                                                                  {253, 231, 37}}};
   if (!(t > 0)) t = 0;  // NaN too
   if (t > 1) t = 1;
   const double s = t * 8;
   const std::size_t i = std::min<std::size_t>(std::size_t(s), 7);
   const double f = s - double(i);
-  const auto mix = [&](int k) { return std::uint8_t(std::lround(kSamples[i][std::size_t(k)] * (1 - f) + kSamples[i + 1][std::size_t(k)] * f)); };
+  const auto mix = [&](int k) {
+    return std::uint8_t(std::lround(kSamples[i][std::size_t(k)] * (1 - f) + kSamples[i + 1][std::size_t(k)] * f));
+  };
   return {mix(0), mix(1), mix(2)};
 }
 
@@ -51,8 +53,10 @@ void map_range(std::span<const float> values, float nodata, double& lo, double& 
   lo = std::max(lo, 0.0);
   hi = std::min(hi, 1.0);
   if (!(hi > lo)) {
-    if (hi >= 1.0) lo = hi - 0.05;
-    else hi = lo + 0.05;
+    if (hi >= 1.0)
+      lo = hi - 0.05;
+    else
+      hi = lo + 0.05;
   }
 }
 
@@ -93,7 +97,8 @@ Picture map_picture(const MapPictureInput& in) {
   draw_text(p, lx, y, in.units, 1, kInk);
   y += text_height(1) + 14;
   const int bar_top = y, bar_h = std::max(160, std::min(mh - 140, 360)), bar_w = 28;
-  for (int k = 0; k < bar_h; ++k) p.fill_rect(lx, bar_top + k, lx + bar_w, bar_top + k + 1, viridis(1.0 - double(k) / double(bar_h - 1)));
+  for (int k = 0; k < bar_h; ++k)
+    p.fill_rect(lx, bar_top + k, lx + bar_w, bar_top + k + 1, viridis(1.0 - double(k) / double(bar_h - 1)));
   // Ticks at multiples of the smallest of 0.05, 0.1, 0.2, 0.25, 0.5 that gives at most 6 of them.
   double step = 0.5;
   for (const double s : {0.25, 0.2, 0.1, 0.05})

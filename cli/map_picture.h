@@ -20,9 +20,9 @@ struct MapPictureInput {
   std::size_t columns = 0, rows = 0;
   std::span<const float> values;  // row-major, row 0 the northernmost
   float nodata = -9999.0f;
-  std::string quantity;           // "SKY VIEW FACTOR"
-  std::string units;              // "FRACTION OF THE OPEN SKY"
-  double pixel_m = 0;             // pixel size, metres (0: not shown)
+  std::string quantity;  // "SKY VIEW FACTOR"
+  std::string units;     // "FRACTION OF THE OPEN SKY"
+  double pixel_m = 0;    // pixel size, metres (0: not shown)
 };
 
 // Viridis at t ∈ [0, 1] (clamped): linear interpolation of 9 samples of the colour map.

@@ -54,7 +54,8 @@ ObstructedFisheye render_obstructed_fisheye(const Scene& scene, const QueryPoint
       if (vis.direction_visible(q, d)) {
         seen[i] = 1;
         ++f.visible_pixels;
-        for (int c = 0; c < 3; ++c) f.sky_rgb[i * 3 + std::size_t(c)] = float(rgb[c]), f.visible_rgb[i * 3 + std::size_t(c)] = 1.0f;
+        for (int c = 0; c < 3; ++c)
+          f.sky_rgb[i * 3 + std::size_t(c)] = float(rgb[c]), f.visible_rgb[i * 3 + std::size_t(c)] = 1.0f;
       }
     }
   const double ex = exposure > 0 ? exposure : auto_exposure(open_rgb);
@@ -108,7 +109,9 @@ ObstructedFisheye render_obstructed_fisheye(const Scene& scene, const QueryPoint
   // N, E, S, W at the rim (east left), white on black.
   const int scale = std::max(1, size / 128), m = 6 * scale;
   const Rgb8 white{255, 255, 255}, black{0, 0, 0};
-  const auto label = [&](const char* t, int cx, int cy) { draw_text(pic, cx - text_width(t, scale) / 2, cy - text_height(scale) / 2, t, scale, white, &black); };
+  const auto label = [&](const char* t, int cx, int cy) {
+    draw_text(pic, cx - text_width(t, scale) / 2, cy - text_height(scale) / 2, t, scale, white, &black);
+  };
   label("N", size / 2, m);
   label("S", size / 2, size - m);
   label("E", m, size / 2);

@@ -28,11 +28,11 @@ struct SunPathMark {
 
 struct ObstructedFisheye {
   int size = 0;
-  std::vector<float> sky_rgb;      // size² × 3, linear
-  std::vector<float> visible_rgb;  // size² × 3, 1 where visible
+  std::vector<float> sky_rgb;         // size² × 3, linear
+  std::vector<float> visible_rgb;     // size² × 3, 1 where visible
   std::vector<std::uint8_t> picture;  // size² × 3, 8-bit sRGB with the drawings
   double svf = 0, sky_exposure = 0;
-  std::size_t visible_pixels = 0, sky_pixels = 0;  // inside the circle
+  std::size_t visible_pixels = 0, sky_pixels = 0;    // inside the circle
   std::size_t sun_marks_up = 0, sun_marks_seen = 0;  // path marks above the horizon / seen by the point
 };
 

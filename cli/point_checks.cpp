@@ -60,8 +60,8 @@ PointWarnings find_point_warnings(const Scene& scene, const PointsTable& table) 
   const auto in_box_xy = [&](double x, double y, double m) {
     return x >= box.lo.x() - m && x <= box.hi.x() + m && y >= box.lo.y() - m && y <= box.hi.y() + m;
   };
-  const bool projected_model = std::max({std::abs(box.lo.x()), std::abs(box.hi.x()), std::abs(box.lo.y()),
-                                         std::abs(box.hi.y())}) > 1000.0;
+  const bool projected_model =
+      std::max({std::abs(box.lo.x()), std::abs(box.hi.x()), std::abs(box.lo.y()), std::abs(box.hi.y())}) > 1000.0;
   constexpr double kFrontDistance = 0.01;  // metres: "just behind a surface"
   const auto note = [](std::size_t& count, std::vector<std::size_t>& lines, std::size_t line) {
     ++count;
@@ -71,12 +71,14 @@ PointWarnings find_point_warnings(const Scene& scene, const PointsTable& table) 
     const QueryPoint& q = table.points[i];
     const std::size_t line = i < table.row_lines.size() ? table.row_lines[i] : i + 2;
     const double x = q.position.x(), y = q.position.y();
-    const bool inside = in_box_xy(x, y, margin) && q.position.z() >= box.lo.z() - margin &&
-                        q.position.z() <= box.hi.z() + margin;
+    const bool inside = in_box_xy(x, y, margin) && q.position.z() >= box.lo.z() - margin && q.position.z() <= box.hi.z() + margin;
     if (!inside) {
-      if (projected_model && std::abs(x) <= 180 && std::abs(y) <= 90) note(w.geographic, w.geographic_lines, line);
-      else if (in_box_xy(y, x, 0.0)) note(w.swapped, w.swapped_lines, line);
-      else note(w.outside, w.outside_lines, line);
+      if (projected_model && std::abs(x) <= 180 && std::abs(y) <= 90)
+        note(w.geographic, w.geographic_lines, line);
+      else if (in_box_xy(y, x, 0.0))
+        note(w.swapped, w.swapped_lines, line);
+      else
+        note(w.outside, w.outside_lines, line);
       continue;
     }
     Ray ray;

@@ -11,7 +11,9 @@
 namespace skyband::cli {
 
 void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
-  cmd->add_option("--mesh", meshes, "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON .json, CityJSONSeq .jsonl); repeat\nfor several")->check(CLI::ExistingFile);
+  cmd->add_option("--mesh", meshes,
+                  "Mesh or city model file (OBJ, OFF, PLY, STL, CityJSON .json, CityJSONSeq .jsonl); repeat\nfor several")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--lod", lod,
                   "City models (CityJSON): read every object at this LoD, e.g. 1.2, 1.3 or 2.2 for 3D BAG (default:\n"
                   "each object at the highest LoD it has; objects without the given LoD are skipped and counted)");
@@ -21,14 +23,15 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
                   "Move every point this many metres along its normal before computing (e.g. 0.1 for points on a\n"
                   "facade, as Ladybug and Honeybee do; default 0); the output keeps the input's coordinates");
   o_method_ = cmd->add_option("--method", method_,
-                  "auto (default): exact at every point, for any mesh — the exact horizon where the scene is\n"
-                  "closed buildings extruded from a flat floor at or below the point (fastest), the exact\n"
-                  "union of the occluders' projections elsewhere; exact: the exact union everywhere; bands:\n"
-                  "the paper's band method (--bands N or --tolerance T; either alone selects it)")
-      ->check(CLI::IsMember({"auto", "exact", "bands"}));
+                              "auto (default): exact at every point, for any mesh — the exact horizon where the scene is\n"
+                              "closed buildings extruded from a flat floor at or below the point (fastest), the exact\n"
+                              "union of the occluders' projections elsewhere; exact: the exact union everywhere; bands:\n"
+                              "the paper's band method (--bands N or --tolerance T; either alone selects it)")
+                  ->check(CLI::IsMember({"auto", "exact", "bands"}));
   o_bands_ = cmd->add_option("--bands", bands_, "Fixed number of equal-weight bands (the paper's method, no refinement)");
-  o_tolerance_ = cmd->add_option("--tolerance", tolerance_,
-                                 "Band method: adaptive refinement to this absolute error of svf and sky_exposure (default 5e-4)");
+  o_tolerance_ =
+      cmd->add_option("--tolerance", tolerance_,
+                      "Band method: adaptive refinement to this absolute error of svf and sky_exposure (default 5e-4)");
   o_bands_->excludes(o_tolerance_);
   cmd->add_option("--threads", threads, "Worker threads (0 = all cores; results do not depend on it)");
   cmd->add_flag("--quiet", quiet, "No progress or summary on stderr");
@@ -37,8 +40,7 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
 VisibilityOptions PointJobArgs::visibility_options() const {
   VisibilityOptions opt;
   if (o_bands_ && o_bands_->count() > 0) {
-    if (bands_ < 1 || bands_ > 1000000)
-      throw InputError("--bands " + std::to_string(bands_) + ": must be between 1 and 1000000");
+    if (bands_ < 1 || bands_ > 1000000) throw InputError("--bands " + std::to_string(bands_) + ": must be between 1 and 1000000");
     opt.bands = bands_;
     opt.tolerance = 0;  // a fixed band count: the paper's method, no refinement
   }
@@ -77,7 +79,9 @@ void PointJobArgs::warn_about_points(const std::string& command, const Scene& sc
   print_point_warnings(command, find_point_warnings(scene, table), points);
 }
 
-TriangleSoup PointJobArgs::load_meshes() const { return cli::load_meshes(meshes, lod, quiet); }
+TriangleSoup PointJobArgs::load_meshes() const {
+  return cli::load_meshes(meshes, lod, quiet);
+}
 
 TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
                          std::vector<MeshReadReport>* reports) {

@@ -9,9 +9,9 @@
 #include <CLI/CLI.hpp>
 
 #include "geometry/bands/band_visibility.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/mesh/scene.h"
 #include "geometry/mesh/triangle_soup.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/mesh_reader.h"
 #include "io/points_csv.h"
 

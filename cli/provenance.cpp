@@ -44,7 +44,9 @@ void write_provenance(const std::string& output, const std::vector<std::pair<std
     const auto size = fs::file_size(path, e1);
     const auto mtime = fs::last_write_time(path, e2);
     if (!e1) f["bytes"] = size;
-    if (!e2) f["modified_utc"] = iso_utc(std::chrono::time_point_cast<std::chrono::system_clock::duration>(std::chrono::file_clock::to_sys(mtime)));
+    if (!e2)
+      f["modified_utc"] =
+          iso_utc(std::chrono::time_point_cast<std::chrono::system_clock::duration>(std::chrono::file_clock::to_sys(mtime)));
     files.push_back(std::move(f));
   }
   j["inputs"] = std::move(files);

@@ -18,7 +18,8 @@ std::map<std::string, std::string> render_attributes(const SkyModel& sky, const 
                 sky.sun_direct_normal().integral_nm());
   char quality[300];
   std::snprintf(quality, sizeof quality,
-                "visibility %s, bands %d, tolerance %g, specular epsilon %g, specular reuse block %d tolerance %g, samples per pixel %d, %s",
+                "visibility %s, bands %d, tolerance %g, specular epsilon %g, specular reuse block %d tolerance %g, samples per "
+                "pixel %d, %s",
                 settings.method == SkyFactorsMethod::bands   ? "band method"
                 : settings.method == SkyFactorsMethod::exact ? "exact union"
                                                              : "exact (horizon or union)",
@@ -43,8 +44,8 @@ std::map<std::string, std::string> render_attributes(const SkyModel& sky, const 
   return a;
 }
 
-double write_render(const std::filesystem::path& exr_path, const RenderLayers& L,
-                    std::map<std::string, std::string> attributes, std::optional<double> exposure) {
+double write_render(const std::filesystem::path& exr_path, const RenderLayers& L, std::map<std::string, std::string> attributes,
+                    std::optional<double> exposure) {
   const double e = exposure ? *exposure : auto_exposure(L.total);
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g", e);

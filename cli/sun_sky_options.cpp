@@ -30,7 +30,9 @@ void require_range(const char* flag, double v, double lo, double hi, const char*
   if (v < lo || v > hi) throw InputError(std::string(flag) + " " + fmt(v) + ": " + what);
 }
 
-Vec3 SunPlacement::direction() const { return direction_from_altitude_azimuth(altitude_deg * kDeg, azimuth_deg * kDeg); }
+Vec3 SunPlacement::direction() const {
+  return direction_from_altitude_azimuth(altitude_deg * kDeg, azimuth_deg * kDeg);
+}
 
 void SunSkyOptions::add_to(CLI::App* sub) {
   const auto add = [&](CLI::Option* o) {
@@ -38,12 +40,15 @@ void SunSkyOptions::add_to(CLI::App* sub) {
     return o;
   };
   o_alt_ = add(sub->add_option("--sun-altitude", sun_altitude_deg_, "Apparent sun altitude, degrees [-90, 90]"));
-  o_az_ = add(sub->add_option("--sun-azimuth", sun_azimuth_deg_, "Sun azimuth, degrees clockwise from north (default 180 = south)"));
+  o_az_ =
+      add(sub->add_option("--sun-azimuth", sun_azimuth_deg_, "Sun azimuth, degrees clockwise from north (default 180 = south)"));
   o_lat_ = add(sub->add_option("--lat", lat_deg_, "Latitude, degrees north (with --lon, --time: NREL SPA)"));
   o_lon_ = add(sub->add_option("--lon", lon_deg_, "Longitude, degrees east"));
-  o_time_ = add(sub->add_option("--time", time_, "Local time, ISO 8601: 2026-06-21T12:00:00+02:00, ...Z, or without offset plus --tz"));
+  o_time_ =
+      add(sub->add_option("--time", time_, "Local time, ISO 8601: 2026-06-21T12:00:00+02:00, ...Z, or without offset plus --tz"));
   o_tz_ = add(sub->add_option("--tz", tz_hours_, "UTC offset of --time in hours (east positive), when --time has none"));
-  add(sub->add_option("--elevation", elevation_m_, "Site elevation above sea level, metres (SPA parallax and atmosphere ground)"));
+  add(sub->add_option("--elevation", elevation_m_,
+                      "Site elevation above sea level, metres (SPA parallax and atmosphere ground)"));
   add(sub->add_option("--delta-t", delta_t_s_, "Delta T = TT - UT1, seconds (default 69)"));
   add(sub->add_option("--pressure-mbar", pressure_mbar_, "Mean local pressure for SPA refraction, mbar (default 1013.25)"));
   add(sub->add_option("--temperature-c", temperature_C_, "Mean local temperature for SPA refraction, deg C (default 15)"));
@@ -51,7 +56,8 @@ void SunSkyOptions::add_to(CLI::App* sub) {
   add(sub->add_option("--angstrom-alpha", angstrom_alpha_, "Angstrom exponent (default 1.3)"));
   add(sub->add_option("--ozone-du", ozone_du_, "Ozone column, Dobson units (default 300)"));
   add(sub->add_option("--model", model_, "Sky model: single | multiple | cie-1 ... cie-15 | cie-overcast (default multiple)"));
-  o_zl_ = add(sub->add_option("--zenith-luminance", zenith_luminance_, "CIE skies: zenith luminance cd/m2 (default gensky-style formula)"));
+  o_zl_ = add(sub->add_option("--zenith-luminance", zenith_luminance_,
+                              "CIE skies: zenith luminance cd/m2 (default gensky-style formula)"));
 }
 
 SunPlacement SunSkyOptions::place_sun() const {
@@ -61,7 +67,8 @@ SunPlacement SunSkyOptions::place_sun() const {
   if (by_angle) {
     if (o_alt_->count() == 0) throw InputError("--sun-azimuth needs --sun-altitude");
     require_range("--sun-altitude", sun_altitude_deg_, -90.0, 90.0, "altitude must be in [-90, 90] degrees");
-    require_range("--sun-azimuth", sun_azimuth_deg_, -360.0, 360.0, "azimuth must be in [-360, 360] degrees (clockwise from north)");
+    require_range("--sun-azimuth", sun_azimuth_deg_, -360.0, 360.0,
+                  "azimuth must be in [-360, 360] degrees (clockwise from north)");
     double az = std::fmod(sun_azimuth_deg_, 360.0);
     if (az < 0) az += 360.0;
     return {sun_altitude_deg_, az, {{"method", "given"}}};
@@ -83,8 +90,7 @@ bool SunSkyOptions::moment_given() const {
 }
 
 SunPlacement SunSkyOptions::sun_at(const std::string& time, const std::string& where) const {
-  if (o_lat_->count() == 0 || o_lon_->count() == 0)
-    throw InputError(where + ": a sun from a time needs --lat and --lon");
+  if (o_lat_->count() == 0 || o_lon_->count() == 0) throw InputError(where + ": a sun from a time needs --lat and --lon");
   require_range("--tz", tz_hours_, -18.0, 18.0, "UTC offset must be in [-18, 18] hours");
   SunPlacement p = sun_at(parse_iso8601(time, where, o_tz_->count() ? std::optional<double>(tz_hours_) : std::nullopt), where);
   p.source["time"] = time;
@@ -101,8 +107,7 @@ std::optional<double> SunSkyOptions::utc_offset_given() const {
 }
 
 SunPlacement SunSkyOptions::sun_at(const LocalDateTime& time, const std::string& where) const {
-  if (o_lat_->count() == 0 || o_lon_->count() == 0)
-    throw InputError(where + ": a sun from a time needs --lat and --lon");
+  if (o_lat_->count() == 0 || o_lon_->count() == 0) throw InputError(where + ": a sun from a time needs --lat and --lon");
   require_range("--lat", lat_deg_, -90.0, 90.0, "latitude must be in [-90, 90] degrees");
   require_range("--lon", lon_deg_, -180.0, 180.0, "longitude must be in [-180, 180] degrees (east positive)");
   require_range("--delta-t", delta_t_s_, -8000.0, 8000.0, "ΔT must be in [-8000, 8000] s");

@@ -69,8 +69,8 @@ class SunSkyOptions {
   double ozone_du_ = AtmosphereParams{}.ozone_du;
   std::string model_ = "multiple";
   double zenith_luminance_ = 0;
-  CLI::Option *o_alt_ = nullptr, *o_az_ = nullptr, *o_lat_ = nullptr, *o_lon_ = nullptr, *o_time_ = nullptr,
-              *o_tz_ = nullptr, *o_zl_ = nullptr;
+  CLI::Option *o_alt_ = nullptr, *o_az_ = nullptr, *o_lat_ = nullptr, *o_lon_ = nullptr, *o_time_ = nullptr, *o_tz_ = nullptr,
+              *o_zl_ = nullptr;
   std::vector<CLI::Option*> all_;
 };
 

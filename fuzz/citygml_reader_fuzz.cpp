@@ -14,7 +14,9 @@
 // reaches it, read_citygml checks well-formedness first). That is its bug, not ours, and bounded
 // by the input: suppressed for those two libraries only, so that a leak of skyband's is still a
 // finding.
-extern "C" const char* __lsan_default_suppressions() { return "leak:libcitygml.so\nleak:libxerces-c"; }
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libcitygml.so\nleak:libxerces-c";
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path path = skyband::fuzz::temp_path("citygml", ".gml");

@@ -14,9 +14,13 @@
 
 namespace {
 
-bool same_bits(const skyband::Vec3& a, const skyband::Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const skyband::Vec3& a, const skyband::Vec3& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
-std::string shown(const std::string& s) { return "'" + s + "'"; }
+std::string shown(const std::string& s) {
+  return "'" + s + "'";
+}
 
 }  // namespace
 
@@ -61,8 +65,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t r = 0; r < in.rows.size(); ++r) {
     for (std::size_t c = 0; c < in.header.size(); ++c)
       if (back.rows[r][c] != in.rows[r][c])
-        finding("round trip: row " + std::to_string(r) + " cell " + std::to_string(c) + " " + shown(in.rows[r][c]) +
-                " became " + shown(back.rows[r][c]));
+        finding("round trip: row " + std::to_string(r) + " cell " + std::to_string(c) + " " + shown(in.rows[r][c]) + " became " +
+                shown(back.rows[r][c]));
     double v = 0;
     const std::string& cell = back.rows[r].back();
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);

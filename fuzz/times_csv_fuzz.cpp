@@ -30,10 +30,10 @@ void read_times(const std::filesystem::path& path) {
   using skyband::InputError;
   const skyband::CsvTable csv = skyband::read_csv_table(path, "times file");
   const std::string header_at = path.string() + ":" + std::to_string(csv.header_line);
-  const int ct = csv.column("time"), calt = csv.column("sun_altitude"), caz = csv.column("sun_azimuth"),
-            ch = csv.column("hours");
+  const int ct = csv.column("time"), calt = csv.column("sun_altitude"), caz = csv.column("sun_azimuth"), ch = csv.column("hours");
   const bool by_time = ct >= 0, by_angle = calt >= 0 || caz >= 0;
-  if (by_time == by_angle) throw InputError(header_at + ": give either a 'time' column or 'sun_altitude' and 'sun_azimuth' columns");
+  if (by_time == by_angle)
+    throw InputError(header_at + ": give either a 'time' column or 'sun_altitude' and 'sun_azimuth' columns");
   if (by_angle && (calt < 0 || caz < 0)) throw InputError(header_at + ": 'sun_altitude' and 'sun_azimuth' come together");
   double total_hours = 0;
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
@@ -42,7 +42,8 @@ void read_times(const std::filesystem::path& path) {
       skyband::SpaInput in;
       in.latitude_deg = 52.0;
       in.longitude_deg = 4.4;
-      in.time = skyband::parse_iso8601(skyband::trim_csv_cell(csv.rows[r][static_cast<std::size_t>(ct)]), csv.where(r), std::nullopt);
+      in.time =
+          skyband::parse_iso8601(skyband::trim_csv_cell(csv.rows[r][static_cast<std::size_t>(ct)]), csv.where(r), std::nullopt);
       const skyband::SpaResult s = skyband::sun_position_spa(in);
       dir = sun_direction(90.0 - s.zenith_deg, s.azimuth_deg);
     } else {

@@ -1,8 +1,8 @@
 #include "io/atomic_file.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <system_error>
-#include <unistd.h>
 
 #include "geometry/core/input_error.h"
 

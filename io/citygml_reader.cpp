@@ -70,8 +70,8 @@ std::string read_bytes(const std::filesystem::path& file) {
 // ---- The byte scan before libcitygml -------------------------------------------------------
 
 struct FileScan {
-  std::string version;                // "1.0" / "2.0"
-  std::vector<std::string> srs_names; // distinct srsName values, in order of appearance
+  std::string version;                 // "1.0" / "2.0"
+  std::vector<std::string> srs_names;  // distinct srsName values, in order of appearance
 };
 
 // The root element's start tag (after a BOM, the XML declaration, comments and processing
@@ -81,21 +81,25 @@ std::string_view root_start_tag(const std::string& name, const std::string& byte
   std::size_t i = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   while (true) {
     while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
-    if (i >= bytes.size() || bytes[i] != '<') throw InputError(name + ":" + std::to_string(line_of(bytes, std::min(i, bytes.size()))) + ": not XML (no root element)");
+    if (i >= bytes.size() || bytes[i] != '<')
+      throw InputError(name + ":" + std::to_string(line_of(bytes, std::min(i, bytes.size()))) + ": not XML (no root element)");
     if (bytes.compare(i, 4, "<!--") == 0) {
       const std::size_t end = bytes.find("-->", i + 4);
-      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated comment");
+      if (end == std::string::npos)
+        throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated comment");
       i = end + 3;
     } else if (bytes.compare(i, 2, "<?") == 0) {
       const std::size_t end = bytes.find("?>", i + 2);
-      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated <?...?>");
+      if (end == std::string::npos)
+        throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated <?...?>");
       i = end + 2;
     } else if (bytes.compare(i, 2, "<!") == 0) {
       throw InputError(name + ":" + std::to_string(line_of(bytes, i)) +
                        ": a DOCTYPE declaration: CityGML files have none (refused: a DTD could load external files)");
     } else {
       const std::size_t end = bytes.find('>', i);
-      if (end == std::string::npos) throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated root element");
+      if (end == std::string::npos)
+        throw InputError(name + ":" + std::to_string(line_of(bytes, i)) + ": malformed XML: unterminated root element");
       return std::string_view(bytes).substr(i, end + 1 - i);
     }
   }
@@ -296,11 +300,13 @@ std::optional<unsigned> parse_requested_lod(const std::string& name, const std::
   while (true) {
     long long v = 0;
     const auto [end, ec] = std::from_chars(text.data() + i, text.data() + text.size(), v);
-    if (ec != std::errc() || v < 0) throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
+    if (ec != std::errc() || v < 0)
+      throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
     parts.push_back(v);
     i = static_cast<std::size_t>(end - text.data());
     if (i == text.size()) break;
-    if (text[i] != '.' || i + 1 == text.size()) throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
+    if (text[i] != '.' || i + 1 == text.size())
+      throw InputError(name + ": requested LoD '" + printable_text(text) + "' is not a LoD such as \"2\"");
     ++i;
   }
   for (std::size_t k = 1; k < parts.size(); ++k)
@@ -313,9 +319,17 @@ std::optional<unsigned> parse_requested_lod(const std::string& name, const std::
 
 bool is_opening_or_boundary(Type t) {
   switch (t) {
-    case Type::COT_WallSurface: case Type::COT_RoofSurface: case Type::COT_GroundSurface: case Type::COT_ClosureSurface:
-    case Type::COT_FloorSurface: case Type::COT_InteriorWallSurface: case Type::COT_CeilingSurface:
-    case Type::COT_OuterCeilingSurface: case Type::COT_OuterFloorSurface: case Type::COT_Door: case Type::COT_Window:
+    case Type::COT_WallSurface:
+    case Type::COT_RoofSurface:
+    case Type::COT_GroundSurface:
+    case Type::COT_ClosureSurface:
+    case Type::COT_FloorSurface:
+    case Type::COT_InteriorWallSurface:
+    case Type::COT_CeilingSurface:
+    case Type::COT_OuterCeilingSurface:
+    case Type::COT_OuterFloorSurface:
+    case Type::COT_Door:
+    case Type::COT_Window:
       return true;
     default:
       return false;
@@ -352,8 +366,8 @@ struct ObjectEntry {
   std::vector<std::uint32_t> children;      // child objects (BuildingPart, BuildingInstallation, ...)
   std::set<unsigned> lods;                  // LoDs with at least one polygon
   std::optional<unsigned> chosen;
-  bool implicit = false;                    // has implicit geometries
-  bool implicit_unread = false;             // ... that are not read (geographic CRS)
+  bool implicit = false;         // has implicit geometries
+  bool implicit_unread = false;  // ... that are not read (geographic CRS)
 };
 
 bool has_polygons(const citygml::Geometry& g) {
@@ -406,7 +420,8 @@ class Notes {
   void emit(std::vector<std::string>& out) const {
     for (const std::string& reason : order_) {
       const auto& [count, example] = counts_.at(reason);
-      out.push_back(std::to_string(count) + " x " + reason + (example.empty() ? "" : " (first: " + printable_text(example) + ")"));
+      out.push_back(std::to_string(count) + " x " + reason +
+                    (example.empty() ? "" : " (first: " + printable_text(example) + ")"));
     }
   }
 
@@ -444,8 +459,14 @@ class ModelWalk {
   // cannot be added to a reference point in degrees before the projection).
   ModelWalk(const std::string& file, std::optional<unsigned> requested, bool lod_set, bool read_implicit, TriangleSoup& soup,
             RawSurfaces& raw, Counts& counts, Notes& notes)
-      : file_(file), requested_(requested), lod_set_(lod_set), read_implicit_(read_implicit), soup_(soup), raw_(raw),
-        counts_(counts), notes_(notes) {
+      : file_(file),
+        requested_(requested),
+        lod_set_(lod_set),
+        read_implicit_(read_implicit),
+        soup_(soup),
+        raw_(raw),
+        counts_(counts),
+        notes_(notes) {
     raw_.ring_start.assign(1, 0);
   }
 
@@ -520,9 +541,10 @@ class ModelWalk {
     ++counts_.objects;
     const CityObject& o = *e.object;
     if (e.implicit_unread)
-      notes_.add("objects with implicit geometries (templates): not read in a geographic CRS (a template in metres on a "
-                 "reference point in degrees)",
-                 o.getId());
+      notes_.add(
+          "objects with implicit geometries (templates): not read in a geographic CRS (a template in metres on a "
+          "reference point in degrees)",
+          o.getId());
     if (e.lods.empty()) {
       if (e.implicit_unread) ++counts_.skipped_objects;
       return;  // no geometry of its own: fine (a parent whose children carry it)
@@ -590,9 +612,8 @@ class ModelWalk {
     }
     if (raw_.coordinates.size() - start > 1 && raw_.coordinates.back() == raw_.coordinates[start]) raw_.coordinates.pop_back();
     distinct_.assign(raw_.coordinates.begin() + static_cast<std::ptrdiff_t>(start), raw_.coordinates.end());  // reused buffer
-    std::sort(distinct_.begin(), distinct_.end(), [](const Vec3& a, const Vec3& b) {
-      return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
-    });
+    std::sort(distinct_.begin(), distinct_.end(),
+              [](const Vec3& a, const Vec3& b) { return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z()); });
     if (std::unique(distinct_.begin(), distinct_.end()) - distinct_.begin() < 3) {
       raw_.coordinates.resize(start);
       return false;
@@ -617,7 +638,8 @@ class ModelWalk {
       return;
     }
     for (const auto& inner : polygon.interiorRings())
-      if (!add_ring(inner->getVertices(), polygon.getId(), place)) notes_.add("inner rings (holes) skipped: fewer than 3 distinct vertices", polygon.getId());
+      if (!add_ring(inner->getVertices(), polygon.getId(), place))
+        notes_.add("inner rings (holes) skipped: fewer than 3 distinct vertices", polygon.getId());
     if (object_index_ == kNone) {
       object_index_ = static_cast<std::uint32_t>(soup_.object_names.size());
       soup_.object_names.push_back(*object_name_);
@@ -656,7 +678,8 @@ void triangulate_surfaces(const RawSurfaces& raw, TriangleSoup& soup, Counts& co
   std::vector<std::uint32_t> vertex_of(raw.coordinates.size());
   for (std::size_t i = 0; i < raw.coordinates.size(); ++i) {
     const Vec3& p = raw.coordinates[i];
-    const PositionKey key{{std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y()), std::bit_cast<std::uint64_t>(p.z())}};
+    const PositionKey key{
+        {std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y()), std::bit_cast<std::uint64_t>(p.z())}};
     const auto [it, inserted] = index.try_emplace(key, static_cast<std::uint32_t>(soup.vertices.size()));
     if (inserted) soup.vertices.push_back(p);
     vertex_of[i] = it->second;
@@ -703,7 +726,9 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
     thrown = "unknown exception";
   }
   if (!thrown.empty() || !logger.error.empty() || !model) {
-    const std::string what = !thrown.empty() ? thrown : !logger.error.empty() ? without_file(logger.error) : "no CityModel in the file";
+    const std::string what = !thrown.empty()         ? thrown
+                             : !logger.error.empty() ? without_file(logger.error)
+                                                     : "no CityModel in the file";
     const std::string at = location_of(logger.error);
     throw InputError(name + (at.empty() ? "" : ":" + at) + ": libcitygml: " + printable_text(what).substr(0, 300));
   }
@@ -729,11 +754,13 @@ CrsInfo check_crs(const std::string& name, const FileScan& scan, CityGmlReport& 
   report.crs = srs;
   const CrsInfo info = classify_crs(srs);
   if (info.kind == CrsKind::geocentric)
-    throw InputError(name + ": srsName '" + printable_text(srs) + "' is a geocentric CRS (z is not up); reproject to a projected CRS first");
+    throw InputError(name + ": srsName '" + printable_text(srs) +
+                     "' is a geocentric CRS (z is not up); reproject to a projected CRS first");
   if (info.kind == CrsKind::unknown)
     report.notes.push_back("srsName '" + printable_text(srs) + "' is not a CRS PROJ knows: coordinates taken as metres");
   if (info.kind == CrsKind::geographic && (info.epsg == 0 || info.name.empty()))
-    throw InputError(name + ": srsName '" + printable_text(srs) + "' is geographic (degrees) and PROJ does not know it: cannot reproject");
+    throw InputError(name + ": srsName '" + printable_text(srs) +
+                     "' is geographic (degrees) and PROJ does not know it: cannot reproject");
   return info;
 }
 
@@ -780,19 +807,23 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   r.lods_used = counts.lods_used;
   if (!r.reprojection.empty()) r.notes.push_back(r.reprojection);
   if (counts.implicit_instances)
-    r.notes.push_back(std::to_string(counts.implicit_instances) + " implicit geometries placed (template x -> M x + reference point)");
+    r.notes.push_back(std::to_string(counts.implicit_instances) +
+                      " implicit geometries placed (template x -> M x + reference point)");
   notes.emit(r.notes);
   for (const auto& [element, n] : logger->unknown_elements)
-    r.notes.push_back(std::to_string(n) + " x <" + printable_text(element) + "> not read by libcitygml (skipped with its content)");
+    r.notes.push_back(std::to_string(n) + " x <" + printable_text(element) +
+                      "> not read by libcitygml (skipped with its content)");
   if (logger->missing_xlinks)
     r.notes.push_back(std::to_string(logger->missing_xlinks) + " xlink:href to polygons that do not exist (first: " +
                       printable_text(without_file(logger->first_missing_xlink)).substr(0, 200) + ")");
-  if (logger->short_rings) r.notes.push_back(std::to_string(logger->short_rings) + " rings with fewer than 4 positions in the file");
+  if (logger->short_rings)
+    r.notes.push_back(std::to_string(logger->short_rings) + " rings with fewer than 4 positions in the file");
   if (logger->duplicate_exteriors)
     r.notes.push_back(std::to_string(logger->duplicate_exteriors) + " polygons with a second exterior ring: the first one kept");
   if (r.triangles == 0)
-    throw InputError(name + ": no triangles (" + std::to_string(r.objects) + " city objects, " + std::to_string(r.skipped_objects) +
-                     " skipped" + (options.lod ? ", requested LoD " + printable_text(*options.lod) : std::string()) + ")");
+    throw InputError(name + ": no triangles (" + std::to_string(r.objects) + " city objects, " +
+                     std::to_string(r.skipped_objects) + " skipped" +
+                     (options.lod ? ", requested LoD " + printable_text(*options.lod) : std::string()) + ")");
   if (report) *report = std::move(r);
   return soup;
 }

@@ -81,10 +81,10 @@ struct CityGmlReadOptions {
 
 struct CityGmlReport {
   std::string file;
-  std::string format;        // "CityGML 2.0", "CityGML 1.0"
-  std::string crs_in_file;   // the srsName verbatim, "" if none
-  std::string crs;           // the CRS of the output: crs_in_file, or the UTM CRS reprojected to
-  std::string reprojection;  // "" when not reprojected, else what was done (one line)
+  std::string format;                     // "CityGML 2.0", "CityGML 1.0"
+  std::string crs_in_file;                // the srsName verbatim, "" if none
+  std::string crs;                        // the CRS of the output: crs_in_file, or the UTM CRS reprojected to
+  std::string reprojection;               // "" when not reprojected, else what was done (one line)
   std::size_t objects = 0;                // city objects (thematic surfaces not counted)
   std::size_t objects_with_geometry = 0;  // objects that gave at least one surface
   std::size_t skipped_objects = 0;        // objects with geometry of which nothing was read
@@ -92,7 +92,7 @@ struct CityGmlReport {
   std::size_t surfaces = 0;               // polygons triangulated
   std::size_t surfaces_with_holes = 0;    // of those: with at least one inner ring kept
   std::size_t triangles = 0;
-  std::size_t vertices = 0;               // soup vertices (bit-identical positions shared)
+  std::size_t vertices = 0;                      // soup vertices (bit-identical positions shared)
   std::map<std::string, std::size_t> lods_used;  // LoD → objects read at it
   std::vector<std::string> notes;                // what was skipped or repaired, and why
   std::string summary() const;                   // a few human-readable lines

@@ -79,7 +79,7 @@ void describe_heights(PJ_CONTEXT* c, const PJ* crs, CrsInfo& info) {
 int utm_epsg(int geodetic_epsg, int zone, bool north) {
   if (north && geodetic_epsg == 6668 && zone >= 51 && zone <= 56) return 6688 + (zone - 51);  // JGD2011
   if (north && geodetic_epsg == 4258 && zone >= 28 && zone <= 38) return 25800 + zone;        // ETRS89
-  return (north ? 32600 : 32700) + zone;                                                       // WGS 84
+  return (north ? 32600 : 32700) + zone;                                                      // WGS 84
 }
 
 }  // namespace
@@ -140,7 +140,8 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
     if (!(lat >= -90 && lat <= 90) || !(lon >= -180 && lon <= 360)) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "(%.17g, %.17g)", p.x(), p.y());
-      throw InputError(file + ": coordinate " + buf + " is not a (" + (source.latitude_first ? "latitude, longitude" : "longitude, latitude") +
+      throw InputError(file + ": coordinate " + buf + " is not a (" +
+                       (source.latitude_first ? "latitude, longitude" : "longitude, latitude") +
                        ") pair in degrees, as the CRS " + source.name + " says; is the axis order or the srsName wrong?");
     }
     lat_min = std::min(lat_min, lat), lat_max = std::max(lat_max, lat);
@@ -167,8 +168,8 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   // Normalised: input (longitude, latitude), output (easting, northing) whatever the CRSs' axis orders.
   Pj op = raw ? Pj(proj_normalize_for_visualization(c.get(), raw.get())) : Pj();
   if (!op)
-    throw InputError(file + ": PROJ finds no transformation from EPSG:" + std::to_string(source.epsg) + " to EPSG:" +
-                     std::to_string(target_epsg));
+    throw InputError(file + ": PROJ finds no transformation from EPSG:" + std::to_string(source.epsg) +
+                     " to EPSG:" + std::to_string(target_epsg));
 
   for (Vec3& p : points) {
     const double lat = source.latitude_first ? p.x() : p.y(), lon = source.latitude_first ? p.y() : p.x();
@@ -190,9 +191,10 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   r.scale_factor_centre = 0.9996 * (1 + de_m * de_m / (2 * 6371000.0 * 6371000.0));
   char k[32];
   std::snprintf(k, sizeof k, "%.6f", r.scale_factor_centre);
-  r.description = "reprojected by PROJ " + std::string(proj_info().release) + " from " + source.name + " (EPSG:" +
-                  std::to_string(source.epsg) + (source.latitude_first ? ", latitude, longitude" : ", longitude, latitude") +
-                  ") to " + r.target_crs + " (" + r.target_name + ", x = easting, y = northing; operation: " + r.operation +
+  r.description = "reprojected by PROJ " + std::string(proj_info().release) + " from " + source.name +
+                  " (EPSG:" + std::to_string(source.epsg) +
+                  (source.latitude_first ? ", latitude, longitude" : ", longitude, latitude") + ") to " + r.target_crs + " (" +
+                  r.target_name + ", x = easting, y = northing; operation: " + r.operation +
                   "); z kept as in the file: " + source.heights + "; UTM scale factor at the model's centre " + k +
                   " (horizontal distances only)";
   return r;

@@ -33,11 +33,11 @@ enum class CrsKind { projected, geographic, geocentric, unknown };
 
 struct CrsInfo {
   CrsKind kind = CrsKind::unknown;
-  int epsg = 0;                 // the code found in the CRS string (0: none)
-  std::string name;             // PROJ's name of it ("JGD2011 + JGD2011 (vertical) height"), "" if unknown
-  int vertical_epsg = 0;        // compound CRSs: the vertical part's EPSG code (6695), else 0
-  std::string heights;          // what the source's z is, in words
-  bool latitude_first = true;   // geographic: axis order of the file (EPSG: latitude, longitude)
+  int epsg = 0;                // the code found in the CRS string (0: none)
+  std::string name;            // PROJ's name of it ("JGD2011 + JGD2011 (vertical) height"), "" if unknown
+  int vertical_epsg = 0;       // compound CRSs: the vertical part's EPSG code (6695), else 0
+  std::string heights;         // what the source's z is, in words
+  bool latitude_first = true;  // geographic: axis order of the file (EPSG: latitude, longitude)
 };
 
 // Classifies a CRS string (srsName). A string naming an EPSG code PROJ knows is classified from
@@ -46,11 +46,11 @@ struct CrsInfo {
 CrsInfo classify_crs(const std::string& crs);
 
 struct Reprojection {
-  std::string target_crs;         // "EPSG:6691", or "EPSG:6691+6695" when the source had a vertical CRS
-  std::string target_name;        // "JGD2011 / UTM zone 54N"
-  std::string operation;          // PROJ's name of the operation used
-  double scale_factor_centre = 1; // UTM point scale factor at the model's centre
-  std::string description;        // one line for the report
+  std::string target_crs;          // "EPSG:6691", or "EPSG:6691+6695" when the source had a vertical CRS
+  std::string target_name;         // "JGD2011 / UTM zone 54N"
+  std::string operation;           // PROJ's name of the operation used
+  double scale_factor_centre = 1;  // UTM point scale factor at the model's centre
+  std::string description;         // one line for the report
 };
 
 // Projects `points` in place: on input (latitude°, longitude°, h) — or (longitude, latitude, h)

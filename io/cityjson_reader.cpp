@@ -29,7 +29,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-
 // A JSON value quoted in a message: compact, at most ~60 characters, control characters escaped.
 std::string value_text(const json& v) {
   std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
@@ -73,7 +72,8 @@ class Notes {
   void emit(std::vector<std::string>& out) const {
     for (const std::string& reason : order_) {
       const Entry& e = counts_.at(reason);
-      out.push_back(std::to_string(e.count) + " x " + reason + (e.example.empty() ? "" : " (first: " + printable_text(e.example) + ")"));
+      out.push_back(std::to_string(e.count) + " x " + reason +
+                    (e.example.empty() ? "" : " (first: " + printable_text(e.example) + ")"));
     }
   }
 
@@ -90,8 +90,8 @@ class Notes {
 // ---- LoD -----------------------------------------------------------------------------------
 
 struct Lod {
-  std::string text;                // as written ("2.2", or the number's shortest form in 1.0)
-  std::vector<long long> parts;    // numeric components: "2.2" → {2, 2}, "1" → {1}
+  std::string text;              // as written ("2.2", or the number's shortest form in 1.0)
+  std::vector<long long> parts;  // numeric components: "2.2" → {2, 2}, "1" → {1}
 };
 
 // Numeric comparison component by component, missing components are 0 ("1" == "1.0").
@@ -144,7 +144,9 @@ Transform read_transform(const json& root, const Where& where, const std::string
   Transform t;
   const auto it = root.find("transform");
   if (it == root.end()) {
-    if (version != "1.0") notes.add("no \"transform\" although CityJSON " + version + " requires one: vertices read as real coordinates", "/transform");
+    if (version != "1.0")
+      notes.add("no \"transform\" although CityJSON " + version + " requires one: vertices read as real coordinates",
+                "/transform");
     return t;
   }
   if (!it->is_object()) fail(where, "/transform", "transform " + value_text(*it) + " is not an object");
@@ -171,7 +173,8 @@ Transform read_transform(const json& root, const Where& where, const std::string
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((optimize("fp-contract=off")))
 #endif
-double apply_transform(long long i, double scale, double translate) {
+double
+apply_transform(long long i, double scale, double translate) {
 #if defined(__clang__)
 #pragma clang fp contract(off)
 #endif
@@ -309,12 +312,13 @@ class ModelBuilder {
           for (const json& c : *children) {
             if (!c.is_string()) continue;
             const auto ch = chosen.find(c.get<std::string>());
-            if (ch != chosen.end() && ch->second && (!best_child || compare(*ch->second, *best_child) > 0)) best_child = ch->second;
+            if (ch != chosen.end() && ch->second && (!best_child || compare(*ch->second, *best_child) > 0))
+              best_child = ch->second;
           }
           if (best_child && compare(*lod, *best_child) < 0) {
             ++counts_.skipped_objects;
-            notes_.add("parent objects skipped: their highest LoD is below their children's (LoD " + lod->text +
-                           " parent, LoD " + best_child->text + " children)",
+            notes_.add("parent objects skipped: their highest LoD is below their children's (LoD " + lod->text + " parent, LoD " +
+                           best_child->text + " children)",
                        pointer);
             continue;
           }
@@ -364,7 +368,8 @@ class ModelBuilder {
 
   const json& template_of(const json& geom, const std::string& pointer) {
     const auto t = geom.find("template");
-    if (t == geom.end() || !t->is_number_unsigned()) fail(*where_, pointer + "/template", "missing or not a non-negative integer");
+    if (t == geom.end() || !t->is_number_unsigned())
+      fail(*where_, pointer + "/template", "missing or not a non-negative integer");
     if (!templates_->geometries)
       fail(*where_, pointer + "/template", "template " + value_text(*t) + " but the file has no \"geometry-templates\"");
     const std::size_t k = t->get<std::size_t>();
@@ -401,7 +406,8 @@ class ModelBuilder {
       fail(*where_, pointer, "vertex index " + value_text(index) + " is not a non-negative integer");
     const std::uint64_t i = index.get<std::uint64_t>();
     if (i >= vertices_->size())
-      fail(*where_, pointer, "vertex index " + value_text(index) + " out of range (" + std::to_string(vertices_->size()) + " vertices)");
+      fail(*where_, pointer,
+           "vertex index " + value_text(index) + " out of range (" + std::to_string(vertices_->size()) + " vertices)");
     std::uint32_t& m = remap_[i];
     if (m == kUnused) {
       m = static_cast<std::uint32_t>(soup_.vertices.size());
@@ -499,12 +505,12 @@ class ModelBuilder {
 
   void walk(const json& node, int depth, const json* values, const std::string& pointer, const std::string& vpointer,
             const json* sem_surfaces, Instance* inst) {
-    if (!node.is_array())
-      fail(*where_, pointer, value_text(node) + " is not an array (boundaries nested to the wrong depth)");
+    if (!node.is_array()) fail(*where_, pointer, value_text(node) + " is not an array (boundaries nested to the wrong depth)");
     if (values && !values->is_array())
       fail(*where_, vpointer, value_text(*values) + " is not an array (semantic values nested to the wrong depth)");
     if (values && values->size() != node.size())
-      fail(*where_, vpointer, std::to_string(values->size()) + " semantic values for " + std::to_string(node.size()) + " boundaries");
+      fail(*where_, vpointer,
+           std::to_string(values->size()) + " semantic values for " + std::to_string(node.size()) + " boundaries");
     for (std::size_t i = 0; i < node.size(); ++i) {
       const json* v = values ? &(*values)[i] : nullptr;
       if (v && v->is_null()) v = nullptr;
@@ -516,8 +522,9 @@ class ModelBuilder {
       std::string name = material_fallback_;
       if (v) {
         if (!v->is_number_unsigned() || v->get<std::size_t>() >= sem_surfaces->size())
-          fail(*where_, vp, "semantic value " + value_text(*v) + " is not an index into the " +
-                                std::to_string(sem_surfaces->size()) + " semantic surfaces");
+          fail(*where_, vp,
+               "semantic value " + value_text(*v) + " is not an index into the " + std::to_string(sem_surfaces->size()) +
+                   " semantic surfaces");
         const json& s = (*sem_surfaces)[v->get<std::size_t>()];
         const auto t = s.is_object() ? s.find("type") : s.end();
         if (!s.is_object() || t == s.end() || !t->is_string())
@@ -529,12 +536,14 @@ class ModelBuilder {
   }
 
   void read_surface(const json& surface, const std::string& pointer, const std::string& name, Instance* inst) {
-    if (!surface.is_array()) fail(*where_, pointer, value_text(surface) + " is not an array of rings (boundaries nested to the wrong depth)");
+    if (!surface.is_array())
+      fail(*where_, pointer, value_text(surface) + " is not an array of rings (boundaries nested to the wrong depth)");
     rings_.clear();
     for (std::size_t r = 0; r < surface.size(); ++r) {
       const json& ring = surface[r];
       const std::string rp = pointer + "/" + std::to_string(r);
-      if (!ring.is_array()) fail(*where_, rp, value_text(ring) + " is not an array of vertex indices (boundaries nested to the wrong depth)");
+      if (!ring.is_array())
+        fail(*where_, rp, value_text(ring) + " is not an array of vertex indices (boundaries nested to the wrong depth)");
       std::vector<std::uint32_t> out;
       out.reserve(ring.size());
       for (std::size_t k = 0; k < ring.size(); ++k) {
@@ -648,7 +657,8 @@ std::string check_crs(const json& root, const Where& where, std::vector<std::str
     fail(where, "/metadata/referenceSystem",
          value_text(*rs) + " is a geographic or geocentric CRS (" + refused +
              "): degrees are not metres; reproject to a projected CRS first (e.g. cjio crs_reproject)");
-  if (crs_epsg_codes(crs).empty()) notes.push_back("referenceSystem " + printable_text(crs) + " names no EPSG code: taken as metres");
+  if (crs_epsg_codes(crs).empty())
+    notes.push_back("referenceSystem " + printable_text(crs) + " names no EPSG code: taken as metres");
   return crs;
 }
 

@@ -19,8 +19,8 @@
 //    translate: 0.001 and most translates are not doubles, and the product is rounded before the
 //    sum, so the error is ≤ ½ ulp(i·ŝ) + |i|·½ ulp(scale) + ½ ulp(translate) + ½ ulp(x)
 //    < 2.5 ulp(max(|i·scale|, |translate|, |x|)) (the scale term is < 1 ulp(i·scale)):
-//    ≈ 4·10⁻¹¹ m at RD coordinates of 10⁵ m, relative to the terms, not to x, when they cancel. Without a transform (CityJSON 1.0)
-//    vertices are JSON numbers taken as parsed (nlohmann parses decimals correctly rounded).
+//    ≈ 4·10⁻¹¹ m at RD coordinates of 10⁵ m, relative to the terms, not to x, when they cancel. Without a transform
+//    (CityJSON 1.0) vertices are JSON numbers taken as parsed (nlohmann parses decimals correctly rounded).
 //  - Only vertices that a read surface uses enter the soup (per file, or per feature in
 //    CityJSONSeq), in order of first use; coordinates are never shifted.
 //  - Geometry types: MultiSurface, CompositeSurface, Solid (every shell, inner shells too),
@@ -87,8 +87,8 @@ struct CityModelReadOptions {
 
 struct CityModelReport {
   std::string file;
-  std::string format;  // "CityJSON 1.0", "CityJSON 2.0", "CityJSONSeq 2.0", ...
-  std::string crs;     // metadata.referenceSystem verbatim, "" if none
+  std::string format;                     // "CityJSON 1.0", "CityJSON 2.0", "CityJSONSeq 2.0", ...
+  std::string crs;                        // metadata.referenceSystem verbatim, "" if none
   std::size_t features = 0;               // CityJSONSeq: CityJSONFeature lines; CityJSON: 0
   std::size_t objects = 0;                // CityObjects in the file (all features)
   std::size_t objects_with_geometry = 0;  // objects that gave at least one surface
@@ -96,7 +96,7 @@ struct CityModelReport {
   std::size_t surfaces = 0;               // surfaces (polygons) triangulated
   std::size_t surfaces_with_holes = 0;    // of those: with at least one inner ring kept
   std::size_t triangles = 0;
-  std::size_t vertices = 0;               // soup vertices (used by read surfaces)
+  std::size_t vertices = 0;                      // soup vertices (used by read surfaces)
   std::map<std::string, std::size_t> lods_used;  // LoD as written → objects read at it
   std::vector<std::string> notes;                // what was skipped or repaired, and why
   std::string summary() const;                   // a few human-readable lines

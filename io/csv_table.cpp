@@ -39,8 +39,7 @@ std::vector<Record> parse_records(const std::string& name, std::string_view text
         const std::size_t quote_line = line;
         ++i;
         for (;;) {
-          if (i >= text.size())
-            throw InputError(name + ":" + std::to_string(quote_line) + ": quoted field is never closed");
+          if (i >= text.size()) throw InputError(name + ":" + std::to_string(quote_line) + ": quoted field is never closed");
           if (text[i] == '"') {
             if (i + 1 < text.size() && text[i + 1] == '"') {
               cell += '"';
@@ -100,7 +99,9 @@ double parse_number(const std::string& name, std::size_t line, const std::string
 
 }  // namespace
 
-std::string trim_csv_cell(const std::string& s) { return trim(s); }
+std::string trim_csv_cell(const std::string& s) {
+  return trim(s);
+}
 
 CsvTable read_csv_table(const std::filesystem::path& file, const std::string& what) {
   const std::string name = file.string();
@@ -154,6 +155,8 @@ std::string CsvTable::text(std::size_t r, int c) const {
   return t;
 }
 
-std::string CsvTable::where(std::size_t r) const { return file.string() + ":" + std::to_string(row_lines[r]); }
+std::string CsvTable::where(std::size_t r) const {
+  return file.string() + ":" + std::to_string(row_lines[r]);
+}
 
 }  // namespace skyband

@@ -13,7 +13,7 @@ namespace skyband {
 
 struct CsvTable {
   std::filesystem::path file;
-  std::vector<std::string> header;             // cells as written
+  std::vector<std::string> header;  // cells as written
   std::size_t header_line = 0;
   std::vector<std::vector<std::string>> rows;  // raw cell text
   std::vector<std::size_t> row_lines;          // line where each row starts

@@ -25,49 +25,58 @@ constexpr int kHeaderLines = 8;
 constexpr int kRecordFields = 35;
 
 // Names of the 35 record fields, 1-based (index 0 unused), as the data dictionary calls them.
-constexpr std::array<const char*, kRecordFields + 1> kFieldNames = {
-    "",
-    "year",
-    "month",
-    "day",
-    "hour",
-    "minute",
-    "data source and uncertainty flags",
-    "dry bulb temperature",
-    "dew point temperature",
-    "relative humidity",
-    "atmospheric station pressure",
-    "extraterrestrial horizontal radiation",
-    "extraterrestrial direct normal radiation",
-    "horizontal infrared radiation intensity",
-    "global horizontal radiation",
-    "direct normal radiation",
-    "diffuse horizontal radiation",
-    "global horizontal illuminance",
-    "direct normal illuminance",
-    "diffuse horizontal illuminance",
-    "zenith luminance",
-    "wind direction",
-    "wind speed",
-    "total sky cover",
-    "opaque sky cover",
-    "visibility",
-    "ceiling height",
-    "present weather observation",
-    "present weather codes",
-    "precipitable water",
-    "aerosol optical depth",
-    "snow depth",
-    "days since last snowfall",
-    "albedo",
-    "liquid precipitation depth",
-    "liquid precipitation quantity"};
+constexpr std::array<const char*, kRecordFields + 1> kFieldNames = {"",
+                                                                    "year",
+                                                                    "month",
+                                                                    "day",
+                                                                    "hour",
+                                                                    "minute",
+                                                                    "data source and uncertainty flags",
+                                                                    "dry bulb temperature",
+                                                                    "dew point temperature",
+                                                                    "relative humidity",
+                                                                    "atmospheric station pressure",
+                                                                    "extraterrestrial horizontal radiation",
+                                                                    "extraterrestrial direct normal radiation",
+                                                                    "horizontal infrared radiation intensity",
+                                                                    "global horizontal radiation",
+                                                                    "direct normal radiation",
+                                                                    "diffuse horizontal radiation",
+                                                                    "global horizontal illuminance",
+                                                                    "direct normal illuminance",
+                                                                    "diffuse horizontal illuminance",
+                                                                    "zenith luminance",
+                                                                    "wind direction",
+                                                                    "wind speed",
+                                                                    "total sky cover",
+                                                                    "opaque sky cover",
+                                                                    "visibility",
+                                                                    "ceiling height",
+                                                                    "present weather observation",
+                                                                    "present weather codes",
+                                                                    "precipitable water",
+                                                                    "aerosol optical depth",
+                                                                    "snow depth",
+                                                                    "days since last snowfall",
+                                                                    "albedo",
+                                                                    "liquid precipitation depth",
+                                                                    "liquid precipitation quantity"};
 
 // 1-based record fields read here.
 enum Field : int {
-  kYear = 1, kMonth = 2, kDay = 3, kHour = 4, kMinute = 5, kDewPoint = 8,
-  kGlobalRadiation = 14, kDirectRadiation = 15, kDiffuseRadiation = 16,
-  kGlobalIlluminance = 17, kDirectIlluminance = 18, kDiffuseIlluminance = 19, kAlbedo = 33
+  kYear = 1,
+  kMonth = 2,
+  kDay = 3,
+  kHour = 4,
+  kMinute = 5,
+  kDewPoint = 8,
+  kGlobalRadiation = 14,
+  kDirectRadiation = 15,
+  kDiffuseRadiation = 16,
+  kGlobalIlluminance = 17,
+  kDirectIlluminance = 18,
+  kDiffuseIlluminance = 19,
+  kAlbedo = 33
 };
 
 // Missing-data codes: a value ≥ the code is missing (data dictionary, \missing).
@@ -167,9 +176,9 @@ std::optional<int> parse_int(std::string_view s) {
 
 bool keyword_is(std::string_view field, std::string_view keyword) {
   field = trim(field);
-  return field.size() == keyword.size() &&
-         std::equal(field.begin(), field.end(), keyword.begin(),
-                    [](char a, char b) { return std::toupper(static_cast<unsigned char>(a)) == b; });
+  return field.size() == keyword.size() && std::equal(field.begin(), field.end(), keyword.begin(), [](char a, char b) {
+           return std::toupper(static_cast<unsigned char>(a)) == b;
+         });
 }
 
 struct Slot {
@@ -216,17 +225,17 @@ class EpwParser {
   }
 
  private:
-  [[noreturn]] void header_fail(std::size_t line, const char* header, int field, const char* field_name,
-                                std::string_view value, const std::string& why) const {
-    throw InputError(name_ + ":" + std::to_string(line) + ": " + header + " field " + std::to_string(field) + " (" +
-                     field_name + ") = '" + excerpt(trim(value)) + "': " + why);
+  [[noreturn]] void header_fail(std::size_t line, const char* header, int field, const char* field_name, std::string_view value,
+                                const std::string& why) const {
+    throw InputError(name_ + ":" + std::to_string(line) + ": " + header + " field " + std::to_string(field) + " (" + field_name +
+                     ") = '" + excerpt(trim(value)) + "': " + why);
   }
 
   WeatherLocation parse_location() const {
     const auto fields = split_fields(lines_[0]);
     if (!keyword_is(fields[0], "LOCATION"))
-      throw InputError(name_ + ":1: the first line must be the LOCATION header of an EPW file; found '" +
-                       excerpt(lines_[0]) + "'");
+      throw InputError(name_ + ":1: the first line must be the LOCATION header of an EPW file; found '" + excerpt(lines_[0]) +
+                       "'");
     // fields[0] is the keyword; LOCATION field k is fields[k].
     std::size_t count = fields.size();
     while (count > 10 && trim(fields[count - 1]).empty()) --count;  // trailing commas
@@ -264,8 +273,7 @@ class EpwParser {
     const std::string_view per_hour = fields.size() > 2 ? fields[2] : std::string_view();
     const auto n = parse_int(per_hour);
     if (!n || *n != 1)
-      header_fail(line, "DATA PERIODS", 2, "records per hour", per_hour,
-                  "only hourly files (1 record per hour) are supported");
+      header_fail(line, "DATA PERIODS", 2, "records per hour", per_hour, "only hourly files (1 record per hour) are supported");
   }
 
   [[noreturn]] void fail(std::size_t line, int field, std::string_view value, const std::string& why) const {
@@ -292,8 +300,7 @@ class EpwParser {
     const double v = number(line, field);
     const std::string_view text = fields_[static_cast<std::size_t>(field) - 1];
     if (v >= kMissingRadiation_Wh_m2)
-      fail(line, field, text,
-           "the missing-data code (>= 9999); every radiation value is needed, so fill the gap before use");
+      fail(line, field, text, "the missing-data code (>= 9999); every radiation value is needed, so fill the gap before use");
     if (v < 0) fail(line, field, text, "negative; radiation must be >= 0 Wh/m2");
     if (v > kMaxRadiation_Wh_m2)
       fail(line, field, text, "above 1400 Wh/m2, more than the sun delivers in an hour even above the atmosphere");
@@ -311,8 +318,7 @@ class EpwParser {
   }
 
   WeatherRecord parse_record(std::size_t line, std::string_view text) {
-    if (trim(text).empty())
-      throw InputError(name_ + ":" + std::to_string(line) + ": empty line between the weather records");
+    if (trim(text).empty()) throw InputError(name_ + ":" + std::to_string(line) + ": empty line between the weather records");
     fields_ = split_fields(text);
     if (fields_.size() != static_cast<std::size_t>(kRecordFields))
       throw InputError(name_ + ":" + std::to_string(line) + ": the record has " + std::to_string(fields_.size()) +
@@ -323,9 +329,9 @@ class EpwParser {
     r.interval_hours = 1;
     r.year = integer(line, kYear, 1, 9999, "outside 1..9999");
     r.month = integer(line, kMonth, 1, 12, "outside 1..12");
-    r.day = integer(line, kDay, 1, max_month_length_days(r.month),
-                    "month " + std::to_string(r.month) + " has no such day (1.." +
-                        std::to_string(max_month_length_days(r.month)) + ")");
+    r.day = integer(
+        line, kDay, 1, max_month_length_days(r.month),
+        "month " + std::to_string(r.month) + " has no such day (1.." + std::to_string(max_month_length_days(r.month)) + ")");
     r.hour = integer(line, kHour, 1, 24, "outside 1..24 (hour h covers (h-1, h]: hour 1 is 00:00-01:00)");
     integer(line, kMinute, 0, 60, "outside 0..60");
     check_sequence(line, r);
@@ -355,8 +361,8 @@ class EpwParser {
     if (r.ghi_Wh_m2 > 0 || r.dhi_Wh_m2 > 0) ++daylight_;
     if (r.dhi_Wh_m2 > kDiffuseExcessRatio * r.ghi_Wh_m2 && r.dhi_Wh_m2 - r.ghi_Wh_m2 >= kDiffuseExcessMin_Wh_m2 &&
         diffuse_excess_++ == 0)
-      first_diffuse_excess_ = "line " + std::to_string(line) + ": global " + format_g(r.ghi_Wh_m2) + ", diffuse " +
-                              format_g(r.dhi_Wh_m2) + " Wh/m2";
+      first_diffuse_excess_ =
+          "line " + std::to_string(line) + ": global " + format_g(r.ghi_Wh_m2) + ", diffuse " + format_g(r.dhi_Wh_m2) + " Wh/m2";
     if (r.month == 2 && r.day == 29 && r.hour == 1 && !is_leap_year(r.year) && false_leap_days_++ == 0)
       first_false_leap_day_ = "line " + std::to_string(line) + ", year " + std::to_string(r.year);
     return r;
@@ -389,16 +395,15 @@ class EpwParser {
     auto& w = series.warnings;
     const std::size_t n = series.records.size();
     if (!(first_ == Slot{1, 1, 1}) || !(previous_ == Slot{12, 31, 24}))
-      w.push_back(name_ + ": the " + std::to_string(n) + " records run from " + describe(first_) + " to " +
-                  describe(previous_) + ", not whole calendar years (01-01 hour 1 to 12-31 hour 24)");
+      w.push_back(name_ + ": the " + std::to_string(n) + " records run from " + describe(first_) + " to " + describe(previous_) +
+                  ", not whole calendar years (01-01 hour 1 to 12-31 hour 24)");
     if (false_leap_days_ > 0)
       w.push_back(name_ + ": " + std::to_string(false_leap_days_) + " February 29 record day(s) in years that are not " +
                   "leap years (first on " + first_false_leap_day_ + ")");
     if (diffuse_excess_ >= 3 && static_cast<double>(diffuse_excess_) >= kDiffuseExcessShare * static_cast<double>(daylight_))
       w.push_back(name_ + ": diffuse horizontal radiation exceeds global horizontal by more than 5 % in " +
-                  std::to_string(diffuse_excess_) + " of " + std::to_string(daylight_) +
-                  " daylight records (first on " + first_diffuse_excess_ +
-                  "); global includes diffuse, so fields 14 and 16 may be swapped or wrong");
+                  std::to_string(diffuse_excess_) + " of " + std::to_string(daylight_) + " daylight records (first on " +
+                  first_diffuse_excess_ + "); global includes diffuse, so fields 14 and 16 may be swapped or wrong");
     if (invalid_albedo_ > 0)
       w.push_back(name_ + ": " + std::to_string(invalid_albedo_) +
                   " albedo value(s) (field 33) outside [0, 1] treated as missing (first on " + first_invalid_albedo_ + ")");

@@ -25,17 +25,18 @@ std::string channel_name(const std::string& layer, int c) {
   return layer.empty() ? std::string(kChannelSuffix[c]) : layer + "." + kChannelSuffix[c];
 }
 
-void validate(const std::filesystem::path& path, int width, int height, std::span<const ImageLayer> layers,
-              ExrPixelType type) {
+void validate(const std::filesystem::path& path, int width, int height, std::span<const ImageLayer> layers, ExrPixelType type) {
   const std::string where = "EXR '" + path.string() + "': ";
-  if (width <= 0 || height <= 0) throw InputError(where + "image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  if (width <= 0 || height <= 0)
+    throw InputError(where + "image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   if (layers.empty()) throw InputError(where + "no layers to write");
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
   std::set<std::string> names;
   for (const auto& l : layers) {
     if (!names.insert(l.name).second) throw InputError(where + "duplicate layer name '" + l.name + "'");
     if (l.rgb.size() != n)
-      throw InputError(where + "layer '" + l.name + "' has " + std::to_string(l.rgb.size()) + " values, expected " + std::to_string(n));
+      throw InputError(where + "layer '" + l.name + "' has " + std::to_string(l.rgb.size()) + " values, expected " +
+                       std::to_string(n));
     for (std::size_t i = 0; i < n; ++i) {
       const float v = l.rgb[i];
       const bool bad = !std::isfinite(v) || (type == ExrPixelType::Half && std::abs(v) > kHalfMax);
@@ -79,7 +80,8 @@ void write_exr(const std::filesystem::path& path, int width, int height, std::sp
         for (int c = 0; c < 3; ++c) {
           const std::string name = channel_name(layers[k].name, c);
           header.channels().insert(name, Imf::Channel(pt));
-          fb.insert(name, Imf::Slice(pt, base + static_cast<std::size_t>(c) * elem, 3 * elem, 3 * elem * static_cast<std::size_t>(width)));
+          fb.insert(name, Imf::Slice(pt, base + static_cast<std::size_t>(c) * elem, 3 * elem,
+                                     3 * elem * static_cast<std::size_t>(width)));
         }
       }
       Imf::OutputFile file(temp.c_str(), header);
@@ -122,9 +124,11 @@ ExrImage read_exr_layers(const std::filesystem::path& path) {
     }
     for (auto& l : img.layers) {
       char* base = reinterpret_cast<char*>(l.rgb.data()) -
-                   (static_cast<std::ptrdiff_t>(dw.min.x) + static_cast<std::ptrdiff_t>(dw.min.y) * img.width) * 3 * static_cast<std::ptrdiff_t>(sizeof(float));
+                   (static_cast<std::ptrdiff_t>(dw.min.x) + static_cast<std::ptrdiff_t>(dw.min.y) * img.width) * 3 *
+                       static_cast<std::ptrdiff_t>(sizeof(float));
       for (int c = 0; c < 3; ++c)
-        fb.insert(channel_name(l.name, c), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float), 3 * sizeof(float) * static_cast<std::size_t>(img.width)));
+        fb.insert(channel_name(l.name, c), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float),
+                                                      3 * sizeof(float) * static_cast<std::size_t>(img.width)));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);

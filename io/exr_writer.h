@@ -26,8 +26,8 @@ void write_exr(const std::filesystem::path& path, int width, int height, std::sp
 
 struct ExrImage {
   int width = 0, height = 0;
-  std::vector<ImageLayer> layers;                  // layers with complete R, G, B channels, sorted by name
-  std::map<std::string, std::string> attributes;   // every string attribute of the header
+  std::vector<ImageLayer> layers;                 // layers with complete R, G, B channels, sorted by name
+  std::map<std::string, std::string> attributes;  // every string attribute of the header
 };
 
 // Reads every RGB layer as float (half channels are converted). Throws InputError naming the

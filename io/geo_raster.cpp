@@ -105,14 +105,15 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
     throw InputError(name + ": the raster has no georeferencing (geotransform): pixel size and position unknown");
   for (int k = 0; k < 6; ++k) r.geotransform[std::size_t(k)] = gt[k];
   if (gt[2] != 0 || gt[4] != 0)
-    throw InputError(name + ": rotated or sheared raster (geotransform terms " + std::to_string(gt[2]) + ", " + std::to_string(gt[4]) +
-                     "): warp it north-up first (gdalwarp)");
+    throw InputError(name + ": rotated or sheared raster (geotransform terms " + std::to_string(gt[2]) + ", " +
+                     std::to_string(gt[4]) + "): warp it north-up first (gdalwarp)");
   for (double v : gt)
     if (!std::isfinite(v)) throw InputError(name + ": geotransform not finite");
   if (gt[1] == 0 || gt[5] == 0) throw InputError(name + ": zero pixel size in the geotransform");
   if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
     if (srs->IsGeographic())
-      throw InputError(name + ": geographic CRS " + crs_label(*srs) + " (degrees, not metres): reproject the raster first (gdalwarp -t_srs EPSG:...)");
+      throw InputError(name + ": geographic CRS " + crs_label(*srs) +
+                       " (degrees, not metres): reproject the raster first (gdalwarp -t_srs EPSG:...)");
     r.crs_wkt = wkt_of(*srs);
     r.crs_name = crs_label(*srs);
   }
@@ -121,7 +122,8 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
   const double nodata = band->GetNoDataValue(&has_nodata);
   if (has_nodata) r.nodata = nodata;
   r.values.resize(r.columns * r.rows);
-  if (band->RasterIO(GF_Read, 0, 0, int(r.columns), int(r.rows), r.values.data(), int(r.columns), int(r.rows), GDT_Float64, 0, 0) != CE_None)
+  if (band->RasterIO(GF_Read, 0, 0, int(r.columns), int(r.rows), r.values.data(), int(r.columns), int(r.rows), GDT_Float64, 0,
+                     0) != CE_None)
     throw InputError(name + ": reading band 1 failed (" + QuietGdal::last() + ")");
   for (std::size_t i = 0; i < r.values.size(); ++i) {
     double& v = r.values[i];
@@ -129,8 +131,8 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
       v = std::nan("");
       ++r.nodata_pixels;
     } else if (!std::isfinite(v)) {
-      throw InputError(name + ": pixel (column " + std::to_string(i % r.columns) + ", row " + std::to_string(i / r.columns) + ") is " +
-                       (std::isnan(v) ? "NaN" : "infinite") + " and not the nodata value" +
+      throw InputError(name + ": pixel (column " + std::to_string(i % r.columns) + ", row " + std::to_string(i / r.columns) +
+                       ") is " + (std::isnan(v) ? "NaN" : "infinite") + " and not the nodata value" +
                        (has_nodata ? " (" + std::to_string(nodata) + ")" : std::string(" (the band has none)")));
     }
   }
@@ -155,8 +157,8 @@ void write_geotiff(const std::filesystem::path& file, const GeoTiffOutput& out) 
   const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
   register_gdal();
   if (out.values.size() != out.columns * out.rows || out.columns == 0 || out.rows == 0)
-    throw InputError(file.string() + ": " + std::to_string(out.values.size()) + " values for a " + std::to_string(out.columns) + " × " +
-                     std::to_string(out.rows) + " raster");
+    throw InputError(file.string() + ": " + std::to_string(out.values.size()) + " values for a " + std::to_string(out.columns) +
+                     " × " + std::to_string(out.rows) + " raster");
   write_atomically(file, [&](const std::filesystem::path& temp) {
     QuietGdal quiet;
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
@@ -177,7 +179,8 @@ void write_geotiff(const std::filesystem::path& file, const GeoTiffOutput& out) 
     ok = band->SetNoDataValue(out.nodata) == CE_None && ok;
     if (!out.band_description.empty()) band->SetDescription(out.band_description.c_str());
     ok = band->RasterIO(GF_Write, 0, 0, int(out.columns), int(out.rows), const_cast<float*>(out.values.data()), int(out.columns),
-                        int(out.rows), GDT_Float32, 0, 0) == CE_None && ok;
+                        int(out.rows), GDT_Float32, 0, 0) == CE_None &&
+         ok;
     if (!ok) throw InputError(file.string() + ": writing the GeoTIFF failed (" + QuietGdal::last() + ")");
     ds.reset();  // flushes and closes; GDAL reports a failed flush through its error state
     if (CPLGetLastErrorType() >= CE_Failure)

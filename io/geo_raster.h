@@ -25,10 +25,10 @@ namespace skyband {
 struct GeoRaster {
   std::size_t columns = 0, rows = 0;
   std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
-  std::vector<double> values;     // row-major, row 0 first; NaN = nodata
-  std::optional<double> nodata;   // the band's nodata value, as in the file
-  std::string crs_wkt;            // "" = the file has none
-  std::string crs_name;           // "EPSG:28992" when the CRS has an EPSG code, else its name, "" if none
+  std::vector<double> values;    // row-major, row 0 first; NaN = nodata
+  std::optional<double> nodata;  // the band's nodata value, as in the file
+  std::string crs_wkt;           // "" = the file has none
+  std::string crs_name;          // "EPSG:28992" when the CRS has an EPSG code, else its name, "" if none
   std::size_t nodata_pixels = 0;
 };
 
@@ -46,10 +46,10 @@ struct GeoTiffOutput {
   std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
   std::span<const float> values;  // row-major, row 0 first
   float nodata = -9999.0f;
-  std::string crs_wkt;            // "" = none written
+  std::string crs_wkt;  // "" = none written
   // Dataset metadata items (TIFF tags GDAL keeps: the quantity, its units, the command line).
   std::vector<std::pair<std::string, std::string>> metadata;
-  std::string band_description;   // e.g. "svf"
+  std::string band_description;  // e.g. "svf"
 };
 
 // Writes a single-band Float32 GeoTIFF (deflate-compressed, tiled when large) atomically.

@@ -10,8 +10,7 @@
 namespace skyband {
 
 void HourlyNetcdfWriter::check(int status, const char* what) const {
-  if (status != NC_NOERR)
-    throw InputError(file_.string() + ": cannot write NetCDF (" + what + "): " + nc_strerror(status));
+  if (status != NC_NOERR) throw InputError(file_.string() + ": cannot write NetCDF (" + what + "): " + nc_strerror(status));
 }
 
 HourlyNetcdfWriter::HourlyNetcdfWriter(const HourlyNetcdfSpec& spec) : file_(spec.file), times_(spec.time_begin_h.size()) {

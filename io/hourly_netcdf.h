@@ -31,7 +31,7 @@ struct HourlyNetcdfSpec {
   std::filesystem::path file;
   std::vector<double> time_begin_h, time_end_h;  // per interval, hours since 1970-01-01 UTC
   std::vector<QueryPoint> points;
-  std::vector<std::string> point_ids;            // empty, or one per point
+  std::vector<std::string> point_ids;  // empty, or one per point
   std::string title, source, history;
 };
 

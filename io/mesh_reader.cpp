@@ -56,8 +56,7 @@ long long parse_integer(std::string_view token, const std::string& name, std::si
   long long value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (ec != std::errc() || end != t.data() + t.size())
-    throw InputError(name + ":" + std::to_string(line) + ": " + what + " '" + printable_text(token) +
-                     "' is not an integer");
+    throw InputError(name + ":" + std::to_string(line) + ": " + what + " '" + printable_text(token) + "' is not an integer");
   return value;
 }
 
@@ -67,8 +66,8 @@ void reject_nul_bytes(const std::string& name, std::string_view text, const char
   std::size_t line = first_line, line_start = 0;
   for (std::size_t i = 0; i < nul; ++i)  // LF, CR LF and lone CR each end a line, as in for_each_line
     if (text[i] == '\n' || (text[i] == '\r' && (i + 1 >= text.size() || text[i + 1] != '\n'))) ++line, line_start = i + 1;
-  throw InputError(name + ":" + std::to_string(line) + ": NUL byte at column " + std::to_string(nul - line_start + 1) +
-                   " of " + what + " (binary data in a text file?)");
+  throw InputError(name + ":" + std::to_string(line) + ": NUL byte at column " + std::to_string(nul - line_start + 1) + " of " +
+                   what + " (binary data in a text file?)");
 }
 
 void add_vertex(PolygonSoup& soup, const Vec3& p) {
@@ -97,8 +96,7 @@ std::string lower(std::string s) {
 std::string read_whole_file(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw InputError("mesh file '" + file.string() + "' does not exist");
-  if (std::filesystem::is_directory(file, ec))
-    throw InputError("mesh file '" + file.string() + "' is a directory, not a file");
+  if (std::filesystem::is_directory(file, ec)) throw InputError("mesh file '" + file.string() + "' is a directory, not a file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError("cannot open mesh file '" + file.string() + "': " + std::strerror(errno));
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -106,7 +104,9 @@ std::string read_whole_file(const std::filesystem::path& file) {
   return bytes;
 }
 
-bool same_position(const Vec3& a, const OpenMesh::Vec3d& b) { return a.x() == b[0] && a.y() == b[1] && a.z() == b[2]; }
+bool same_position(const Vec3& a, const OpenMesh::Vec3d& b) {
+  return a.x() == b[0] && a.y() == b[1] && a.z() == b[2];
+}
 
 std::string describe(const Vec3& p) {
   std::ostringstream s;
@@ -118,8 +118,7 @@ std::string describe(const Vec3& p) {
 // Tries OpenMesh. Returns true and fills `out` (vertices + polygons in file order) only when
 // OpenMesh reproduced every polygon of the validating pass with bit-identical corner positions
 // (compared as cyclic sequences); otherwise returns false with the reason.
-bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& soup, PolygonSoup& out,
-                        std::string& reason) {
+bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& soup, PolygonSoup& out, std::string& reason) {
   if (!soup.float32_exact) {
     for (const Vec3& p : soup.vertices)
       for (int i = 0; i < 3; ++i)
@@ -146,7 +145,8 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
   } catch (const std::bad_alloc&) {
     // Never fall back silently: our pass has bounded every count by the file's size, so OpenMesh
     // running out of memory means it read the file differently from our check.
-    throw InputError(file.string() + ": OpenMesh 9 ran out of memory reading this file (it reads its layout "
+    throw InputError(file.string() +
+                     ": OpenMesh 9 ran out of memory reading this file (it reads its layout "
                      "differently from skyband's check); the file is malformed");
   } catch (const std::exception& e) {
     reason = std::string("OpenMesh 9 threw: ") + e.what();
@@ -174,7 +174,8 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
   std::vector<std::uint32_t> ring;
   for (std::size_t f = 0; f < mesh.n_faces(); ++f) {
     ring.clear();
-    for (const auto v : mesh.fv_range(OpenMesh::FaceHandle(static_cast<int>(f)))) ring.push_back(static_cast<std::uint32_t>(v.idx()));
+    for (const auto v : mesh.fv_range(OpenMesh::FaceHandle(static_cast<int>(f))))
+      ring.push_back(static_cast<std::uint32_t>(v.idx()));
     const std::uint32_t b = soup.polygon_start[f], e = soup.polygon_start[f + 1];
     const std::size_t n = e - b;
     bool match = ring.size() == n;
@@ -183,13 +184,13 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
       for (std::size_t shift = 0; shift < n && !match; ++shift) {
         bool all = true;
         for (std::size_t k = 0; k < n && all; ++k)
-          all = same_position(soup.vertices[soup.indices[b + k]], mesh.point(OpenMesh::VertexHandle(static_cast<int>(ring[(k + shift) % n]))));
+          all = same_position(soup.vertices[soup.indices[b + k]],
+                              mesh.point(OpenMesh::VertexHandle(static_cast<int>(ring[(k + shift) % n]))));
         match = all;
       }
     }
     if (!match) {
-      reason = "OpenMesh 9 changed face " + std::to_string(f + 1) + " (corner " +
-               describe(soup.vertices[soup.indices[b]]) + ")";
+      reason = "OpenMesh 9 changed face " + std::to_string(f + 1) + " (corner " + describe(soup.vertices[soup.indices[b]]) + ")";
       return false;
     }
     // Keep the file's starting corner so that the face is the file's, not a rotation of it.
@@ -216,8 +217,8 @@ const std::vector<std::string>& supported_mesh_extensions() {
 std::string MeshReadReport::summary() const {
   std::ostringstream s;
   s << file << ": " << format << ", read by " << reader << "\n";
-  s << "  " << vertices_in_file << " vertices, " << faces_read << " of " << faces_in_file << " faces read, "
-    << triangles << " triangles";
+  s << "  " << vertices_in_file << " vertices, " << faces_read << " of " << faces_in_file << " faces read, " << triangles
+    << " triangles";
   if (polygons_triangulated) s << " (" << polygons_triangulated << " polygons triangulated";
   if (polygons_triangulated && polygons_fanned) s << ", " << polygons_fanned << " of them fanned";
   if (polygons_triangulated) s << ")";
@@ -247,7 +248,8 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
                       std::to_string(c.skipped_objects) + " skipped), " + std::to_string(c.surfaces_with_holes) +
                       " surfaces with holes");
     std::string lods;
-    for (const auto& [lod, n] : c.lods_used) lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
+    for (const auto& [lod, n] : c.lods_used)
+      lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
     if (!lods.empty()) r.notes.push_back(lods);
     if (!c.crs.empty()) r.notes.push_back("referenceSystem " + c.crs);  // without one the reader's own note says so
     r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
@@ -278,7 +280,8 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
                       std::to_string(c.skipped_objects) + " skipped), " + std::to_string(c.thematic_surfaces) +
                       " thematic surfaces, " + std::to_string(c.surfaces_with_holes) + " polygons with holes");
     std::string lods;
-    for (const auto& [lod, n] : c.lods_used) lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
+    for (const auto& [lod, n] : c.lods_used)
+      lods += (lods.empty() ? "" : ", ") + std::string("LoD ") + lod + ": " + std::to_string(n);
     if (!lods.empty()) r.notes.push_back(lods);
     if (!c.crs_in_file.empty())
       r.notes.push_back("srsName " + c.crs_in_file + (c.crs != c.crs_in_file ? "; output in " + c.crs : std::string()));
@@ -294,7 +297,8 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
   if (is_cityjson_path(file)) return read_city_model(file, report, options);
   if (is_citygml_path(file)) return read_citygml_model(file, report, options);
   if (options.lod)
-    throw InputError(name + ": --lod " + *options.lod + " applies to city models (CityJSON, CityJSONSeq, CityGML); this file has no LoDs");
+    throw InputError(name + ": --lod " + *options.lod +
+                     " applies to city models (CityJSON, CityJSONSeq, CityGML); this file has no LoDs");
   const std::string extension = lower(file.extension().string());
   const auto& supported = supported_mesh_extensions();
   if (std::find(supported.begin(), supported.end(), extension) == supported.end()) {
@@ -305,10 +309,14 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
   const std::string bytes = read_whole_file(file);
 
   PolygonSoup soup;
-  if (extension == ".obj") soup = mesh_io::parse_obj(name, bytes);
-  else if (extension == ".off") soup = mesh_io::parse_off(name, bytes);
-  else if (extension == ".ply") soup = mesh_io::parse_ply(name, bytes);
-  else soup = mesh_io::parse_stl(name, bytes);
+  if (extension == ".obj")
+    soup = mesh_io::parse_obj(name, bytes);
+  else if (extension == ".off")
+    soup = mesh_io::parse_off(name, bytes);
+  else if (extension == ".ply")
+    soup = mesh_io::parse_ply(name, bytes);
+  else
+    soup = mesh_io::parse_stl(name, bytes);
 
   if (soup.polygon_count() == 0)
     throw InputError(name + ": empty mesh: no faces (" + std::to_string(soup.vertices.size()) + " vertices)");

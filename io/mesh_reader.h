@@ -18,10 +18,10 @@
 //     reader takes layouts our pass accepts differently — counts on the header line, an extra
 //     value after a face, a comment right after the header — and then reads "-1" as a face size of
 //     ~4·10⁹, gigabytes, or uses an uninitialised face count) and a PLY file with an element
-//     without properties (OpenMesh loops over its count, up to 4·10⁹ times). Measured limits of OpenMesh 9.0 that make us fall back: its readers parse
-//     coordinates as 32-bit floats (678045.908 becomes 678045.9375), refuse OFF files with `#`
-//     comment lines, drop faces that would make the mesh non-manifold or have repeated indices,
-//     and drop a face of a PLY with CR LF line ends.
+//     without properties (OpenMesh loops over its count, up to 4·10⁹ times). Measured limits of OpenMesh 9.0 that make us fall
+//     back: its readers parse coordinates as 32-bit floats (678045.908 becomes 678045.9375), refuse OFF files with `#` comment
+//     lines, drop faces that would make the mesh non-manifold or have repeated indices, and drop a face of a PLY with CR LF line
+//     ends.
 //  3. Otherwise the validating pass's polygon soup is used ("skyband polygon soup" + the reason).
 //  Either way every polygon with more than 3 vertices is triangulated by triangulate_polygon
 //  (geometry/mesh/polygon_triangulation.h: projected constrained Delaunay triangulation, correct for
@@ -56,18 +56,18 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/mesh/mesh_defects.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/mesh_defects.h"
 #include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 
 struct MeshReadReport {
-  std::string file, format;  // format: "OBJ", "OFF", "PLY (ascii)", "STL (binary)", ...
-  std::string reader;        // "OpenMesh 9" or "skyband polygon soup (<reason>)"
-  std::size_t vertices_in_file = 0;       // after welding for STL
-  std::size_t faces_in_file = 0;          // declared (OFF/PLY/binary STL) or counted (OBJ, ascii STL)
-  std::size_t faces_read = 0;             // faces that became triangles (must equal faces_in_file)
+  std::string file, format;          // format: "OBJ", "OFF", "PLY (ascii)", "STL (binary)", ...
+  std::string reader;                // "OpenMesh 9" or "skyband polygon soup (<reason>)"
+  std::size_t vertices_in_file = 0;  // after welding for STL
+  std::size_t faces_in_file = 0;     // declared (OFF/PLY/binary STL) or counted (OBJ, ascii STL)
+  std::size_t faces_read = 0;        // faces that became triangles (must equal faces_in_file)
   std::size_t triangles = 0;
   std::size_t polygons_triangulated = 0;  // faces with > 3 vertices
   std::size_t polygons_fanned = 0;        // of those: zero-area or self-crossing, fan-triangulated
@@ -85,8 +85,7 @@ struct MeshReadOptions {
 };
 
 // Reads one mesh file. Throws InputError on unreadable, malformed or empty input.
-TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr,
-                       const MeshReadOptions& options = {});
+TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report = nullptr, const MeshReadOptions& options = {});
 
 // The supported extensions, lower case with dot: ".obj", ".off", ".ply", ".stl", ".json", ".jsonl",
 // ".gml", ".xml", ".citygml".
@@ -96,18 +95,18 @@ namespace mesh_io {
 
 // The validating pass's result: the file's polygons verbatim.
 struct PolygonSoup {
-  std::string format;                          // as in MeshReadReport::format
-  std::vector<Vec3> vertices;                  // metres, verbatim
-  std::vector<std::uint32_t> polygon_start;    // polygon p = indices[start[p], start[p + 1])
+  std::string format;                        // as in MeshReadReport::format
+  std::vector<Vec3> vertices;                // metres, verbatim
+  std::vector<std::uint32_t> polygon_start;  // polygon p = indices[start[p], start[p + 1])
   std::vector<std::uint32_t> indices;
-  std::vector<std::uint32_t> polygon_material; // OBJ usemtl: per polygon, into material_names
-  std::vector<std::string> material_names;     // empty when the file has no usemtl
-  std::vector<std::uint32_t> polygon_object;   // OBJ o / g: per polygon, into object_names
-  std::vector<std::string> object_names;       // empty when the file has no o or g
+  std::vector<std::uint32_t> polygon_material;  // OBJ usemtl: per polygon, into material_names
+  std::vector<std::string> material_names;      // empty when the file has no usemtl
+  std::vector<std::uint32_t> polygon_object;    // OBJ o / g: per polygon, into object_names
+  std::vector<std::string> object_names;        // empty when the file has no o or g
   std::size_t faces_declared = 0;
-  bool welded = false;                         // STL: identical positions merged while reading
-  bool float32_exact = true;                   // every coordinate is exactly a 32-bit float
-  std::string not_for_openmesh;                // why OpenMesh must not read the file ("" = it may try)
+  bool welded = false;           // STL: identical positions merged while reading
+  bool float32_exact = true;     // every coordinate is exactly a 32-bit float
+  std::string not_for_openmesh;  // why OpenMesh must not read the file ("" = it may try)
   std::vector<std::string> notes;
 
   std::size_t polygon_count() const { return polygon_start.empty() ? 0 : polygon_start.size() - 1; }

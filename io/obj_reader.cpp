@@ -63,8 +63,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
           zero_based = static_cast<long long>(soup.vertices.size()) + index;  // relative: -1 = last vertex
           if (zero_based < 0)
             throw InputError(name + ":" + std::to_string(line) + ": relative face index " + std::to_string(index) +
-                             " reaches before the first vertex (" + std::to_string(soup.vertices.size()) +
-                             " vertices so far)");
+                             " reaches before the first vertex (" + std::to_string(soup.vertices.size()) + " vertices so far)");
         } else {
           throw InputError(name + ":" + std::to_string(line) + ": face index 0 is invalid (OBJ indices start at 1)");
         }
@@ -96,8 +95,7 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
       auto [it, inserted] = material_ids.emplace(material, static_cast<std::uint32_t>(soup.material_names.size()));
       if (inserted) soup.material_names.push_back(material);
       current_material = it->second;
-    } else if (key == "vt" || key == "vn" || key == "vp" || key == "s" ||
-               key == "mtllib" || key == "l" || key == "p") {
+    } else if (key == "vt" || key == "vn" || key == "vp" || key == "s" || key == "mtllib" || key == "l" || key == "p") {
       // texture/normal data, smoothing, materials library, lines and points: not geometry we occlude with
     } else {
       ++ignored_keywords[std::string(key)];
@@ -105,9 +103,8 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
   });
 
   if (max_index > static_cast<long long>(soup.vertices.size()))
-    throw InputError(name + ":" + std::to_string(max_index_line) + ": face vertex index " + std::to_string(max_index) +
-                     " ('" + max_index_token + "') is out of range: the file has " +
-                     std::to_string(soup.vertices.size()) + " vertices");
+    throw InputError(name + ":" + std::to_string(max_index_line) + ": face vertex index " + std::to_string(max_index) + " ('" +
+                     max_index_token + "') is out of range: the file has " + std::to_string(soup.vertices.size()) + " vertices");
   if (!any_usemtl) soup.polygon_material.clear();
   if (!any_object) soup.polygon_object.clear();
   soup.faces_declared = soup.polygon_count();
@@ -117,7 +114,8 @@ PolygonSoup parse_obj(const std::string& name, const std::string& bytes) {
       soup.notes.push_back("ignored lines with " + std::to_string(ignored_keywords.size() - 10) + " more unknown OBJ keywords");
       break;
     }
-    soup.notes.push_back("ignored " + std::to_string(count) + " line(s) with unknown OBJ keyword '" + printable_text(keyword) + "'");
+    soup.notes.push_back("ignored " + std::to_string(count) + " line(s) with unknown OBJ keyword '" + printable_text(keyword) +
+                         "'");
   }
   return soup;
 }

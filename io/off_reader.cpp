@@ -53,7 +53,10 @@ PolygonSoup parse_off(const std::string& name, const std::string& bytes) {
     }
     if (stage == Stage::kCounts) {
       for (std::size_t i = first; i < tokens.size() && counts.size() < 3; ++i) {
-        const long long c = parse_integer(tokens[i], name, line, counts.empty() ? "vertex count" : counts.size() == 1 ? "face count" : "edge count");
+        const long long c = parse_integer(tokens[i], name, line,
+                                          counts.empty()       ? "vertex count"
+                                          : counts.size() == 1 ? "face count"
+                                                               : "edge count");
         if (c < 0) throw InputError(where(line) + "negative count " + std::to_string(c));
         counts.push_back(c);
       }
@@ -82,8 +85,7 @@ PolygonSoup parse_off(const std::string& name, const std::string& bytes) {
       Vec3 p;
       for (int i = 0; i < 3; ++i) p[i] = parse_coordinate(tokens[static_cast<std::size_t>(i)], name, line, axes[i]);
       add_vertex(soup, p);
-      if (static_cast<long long>(soup.vertices.size()) == vertex_count)
-        stage = face_count > 0 ? Stage::kFaces : Stage::kTrailing;
+      if (static_cast<long long>(soup.vertices.size()) == vertex_count) stage = face_count > 0 ? Stage::kFaces : Stage::kTrailing;
       return;
     }
     if (stage == Stage::kFaces) {
@@ -93,8 +95,8 @@ PolygonSoup parse_off(const std::string& name, const std::string& bytes) {
         throw InputError(where(line) + "face " + std::to_string(face) + " declares " + std::to_string(n) +
                          " vertices, at least 3 needed");
       if (static_cast<long long>(tokens.size()) - 1 < n)
-        throw InputError(where(line) + "face " + std::to_string(face) + " declares " + std::to_string(n) +
-                         " vertices, has " + std::to_string(tokens.size() - 1));
+        throw InputError(where(line) + "face " + std::to_string(face) + " declares " + std::to_string(n) + " vertices, has " +
+                         std::to_string(tokens.size() - 1));
       for (long long k = 0; k < n; ++k) {
         const long long index = parse_integer(tokens[static_cast<std::size_t>(k) + 1], name, line, "face vertex index");
         if (index < 0 || index >= vertex_count)
@@ -120,13 +122,12 @@ PolygonSoup parse_off(const std::string& name, const std::string& bytes) {
       throw InputError(at_end + "file ends after " + std::to_string(soup.vertices.size()) + " of " +
                        std::to_string(vertex_count) + " vertices");
     case Stage::kFaces:
-      throw InputError(at_end + "file ends after " + std::to_string(soup.polygon_count()) + " of " +
-                       std::to_string(face_count) + " faces");
+      throw InputError(at_end + "file ends after " + std::to_string(soup.polygon_count()) + " of " + std::to_string(face_count) +
+                       " faces");
     case Stage::kTrailing:
       break;
   }
-  if (trailing_lines)
-    soup.notes.push_back("ignored " + std::to_string(trailing_lines) + " line(s) after the last declared face");
+  if (trailing_lines) soup.notes.push_back("ignored " + std::to_string(trailing_lines) + " line(s) after the last declared face");
   return soup;
 }
 

@@ -23,29 +23,48 @@ namespace {
 enum class Scalar { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
 
 bool scalar_from_name(std::string_view s, Scalar& out) {
-  if (s == "char" || s == "int8") out = Scalar::kInt8;
-  else if (s == "uchar" || s == "uint8") out = Scalar::kUint8;
-  else if (s == "short" || s == "int16") out = Scalar::kInt16;
-  else if (s == "ushort" || s == "uint16") out = Scalar::kUint16;
-  else if (s == "int" || s == "int32") out = Scalar::kInt32;
-  else if (s == "uint" || s == "uint32") out = Scalar::kUint32;
-  else if (s == "float" || s == "float32") out = Scalar::kFloat32;
-  else if (s == "double" || s == "float64") out = Scalar::kFloat64;
-  else return false;
+  if (s == "char" || s == "int8")
+    out = Scalar::kInt8;
+  else if (s == "uchar" || s == "uint8")
+    out = Scalar::kUint8;
+  else if (s == "short" || s == "int16")
+    out = Scalar::kInt16;
+  else if (s == "ushort" || s == "uint16")
+    out = Scalar::kUint16;
+  else if (s == "int" || s == "int32")
+    out = Scalar::kInt32;
+  else if (s == "uint" || s == "uint32")
+    out = Scalar::kUint32;
+  else if (s == "float" || s == "float32")
+    out = Scalar::kFloat32;
+  else if (s == "double" || s == "float64")
+    out = Scalar::kFloat64;
+  else
+    return false;
   return true;
 }
 
 std::size_t size_of(Scalar s) {
   switch (s) {
-    case Scalar::kInt8: case Scalar::kUint8: return 1;
-    case Scalar::kInt16: case Scalar::kUint16: return 2;
-    case Scalar::kInt32: case Scalar::kUint32: case Scalar::kFloat32: return 4;
-    case Scalar::kFloat64: return 8;
+    case Scalar::kInt8:
+    case Scalar::kUint8:
+      return 1;
+    case Scalar::kInt16:
+    case Scalar::kUint16:
+      return 2;
+    case Scalar::kInt32:
+    case Scalar::kUint32:
+    case Scalar::kFloat32:
+      return 4;
+    case Scalar::kFloat64:
+      return 8;
   }
   return 0;
 }
 
-bool is_integer(Scalar s) { return s != Scalar::kFloat32 && s != Scalar::kFloat64; }
+bool is_integer(Scalar s) {
+  return s != Scalar::kFloat32 && s != Scalar::kFloat64;
+}
 
 struct Property {
   std::string name;
@@ -82,14 +101,43 @@ class BodyReader {
     if (big != (std::endian::native == std::endian::big))
       for (std::size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
     switch (type) {
-      case Scalar::kInt8: { std::int8_t v; std::memcpy(&v, b, 1); return v; }
-      case Scalar::kUint8: return b[0];
-      case Scalar::kInt16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-      case Scalar::kUint16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case Scalar::kInt32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::kUint32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::kFloat32: { float v; std::memcpy(&v, b, 4); return v; }
-      case Scalar::kFloat64: { double v; std::memcpy(&v, b, 8); return v; }
+      case Scalar::kInt8: {
+        std::int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case Scalar::kUint8:
+        return b[0];
+      case Scalar::kInt16: {
+        std::int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Scalar::kUint16: {
+        std::uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Scalar::kInt32: {
+        std::int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::kUint32: {
+        std::uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::kFloat32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Scalar::kFloat64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -167,14 +215,19 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
     if (tokens[0] == "format") {
       if (tokens.size() < 3 || tokens[2] != "1.0")
         throw InputError(where + "unsupported PLY format line '" + printable_text(text) + "'");
-      if (tokens[1] == "ascii") format = 0;
-      else if (tokens[1] == "binary_little_endian") format = 1;
-      else if (tokens[1] == "binary_big_endian") format = 2;
-      else throw InputError(where + "unknown PLY format '" + printable_text(tokens[1]) + "'");
+      if (tokens[1] == "ascii")
+        format = 0;
+      else if (tokens[1] == "binary_little_endian")
+        format = 1;
+      else if (tokens[1] == "binary_big_endian")
+        format = 2;
+      else
+        throw InputError(where + "unknown PLY format '" + printable_text(tokens[1]) + "'");
     } else if (tokens[0] == "element") {
       if (tokens.size() != 3) throw InputError(where + "malformed element line '" + printable_text(text) + "'");
       const long long count = parse_integer(tokens[2], name, line, "element count");
-      if (count < 0 || count > 0xFFFFFFFFll) throw InputError(where + "element count " + std::to_string(count) + " is out of range");
+      if (count < 0 || count > 0xFFFFFFFFll)
+        throw InputError(where + "element count " + std::to_string(count) + " is out of range");
       elements.push_back({printable_text(tokens[1]), static_cast<std::size_t>(count), line, {}});
     } else if (tokens[0] == "property") {
       if (elements.empty()) throw InputError(where + "property before any element");
@@ -240,8 +293,8 @@ PolygonSoup parse_ply(const std::string& name, const std::string& bytes) {
         soup.notes.push_back("element '" + e.name + "' (line " + std::to_string(e.header_line) + ") has no properties: its " +
                              std::to_string(e.count) + " entries hold no data and were skipped");
         if (soup.not_for_openmesh.empty())
-          soup.not_for_openmesh = "OpenMesh 9 would loop over the " + std::to_string(e.count) + " entries of element '" +
-                                  e.name + "', which has no properties";
+          soup.not_for_openmesh = "OpenMesh 9 would loop over the " + std::to_string(e.count) + " entries of element '" + e.name +
+                                  "', which has no properties";
       }
       continue;
     }

@@ -1,7 +1,7 @@
 #include "io/ply_writer.h"
 
-#include <cstdio>
 #include <bit>
+#include <cstdio>
 #include <cstring>
 
 #include "geometry/core/input_error.h"
@@ -31,12 +31,14 @@ void write_face_values_ply(const std::filesystem::path& file, const FaceValuesPl
                      " colours for " + std::to_string(nt) + " faces");
   std::string header = "ply\nformat binary_little_endian 1.0\n";
   for (const std::string& c : ply.comments) {
-    if (c.find_first_of("\r\n") != std::string::npos) throw InputError(file.string() + ": a PLY comment cannot hold a line break");
+    if (c.find_first_of("\r\n") != std::string::npos)
+      throw InputError(file.string() + ": a PLY comment cannot hold a line break");
     header += "comment " + c + "\n";
   }
   header += "element vertex " + std::to_string(soup.vertices.size()) +
             "\nproperty double x\nproperty double y\nproperty double z\n"
-            "element face " + std::to_string(nt) +
+            "element face " +
+            std::to_string(nt) +
             "\nproperty list uchar uint vertex_indices\nproperty float value\n"
             "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
   std::vector<char> body;

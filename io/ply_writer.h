@@ -19,9 +19,9 @@ namespace skyband {
 
 struct FaceValuesPly {
   const TriangleSoup* soup = nullptr;
-  std::span<const float> values;                    // one per triangle
+  std::span<const float> values;                     // one per triangle
   std::span<const std::array<std::uint8_t, 3>> rgb;  // one per triangle
-  std::vector<std::string> comments;                // one header line each (no line breaks)
+  std::vector<std::string> comments;                 // one header line each (no line breaks)
 };
 
 // InputError when the counts disagree, a comment holds a line break, or the file cannot be written.

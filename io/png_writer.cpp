@@ -26,7 +26,8 @@ namespace {
 void check_finite(std::span<const float> rgb, const std::string& what) {
   for (std::size_t i = 0; i < rgb.size(); ++i)
     if (!std::isfinite(rgb[i]))
-      throw InputError(what + ": value " + std::to_string(i / 3) + "." + "RGB"[i % 3] + " = " + std::to_string(rgb[i]) + " is not finite");
+      throw InputError(what + ": value " + std::to_string(i / 3) + "." + "RGB"[i % 3] + " = " + std::to_string(rgb[i]) +
+                       " is not finite");
 }
 }  // namespace
 
@@ -47,19 +48,23 @@ double auto_exposure(std::span<const float> rgb, double key) {
 
 void write_png_srgb(const std::filesystem::path& path, int width, int height, std::span<const float> rgb, double exposure) {
   const std::string where = "PNG '" + path.string() + "'";
-  if (width <= 0 || height <= 0) throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  if (width <= 0 || height <= 0)
+    throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
   if (rgb.size() != n) throw InputError(where + ": " + std::to_string(rgb.size()) + " values, expected " + std::to_string(n));
-  if (!(exposure > 0) || !std::isfinite(exposure)) throw InputError(where + ": exposure " + std::to_string(exposure) + " must be finite and > 0");
+  if (!(exposure > 0) || !std::isfinite(exposure))
+    throw InputError(where + ": exposure " + std::to_string(exposure) + " must be finite and > 0");
   check_finite(rgb, where);
   std::vector<std::uint8_t> bytes(n);
-  for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<std::uint8_t>(std::lround(255.0 * tone_map_channel(rgb[i], exposure)));
+  for (std::size_t i = 0; i < n; ++i)
+    bytes[i] = static_cast<std::uint8_t>(std::lround(255.0 * tone_map_channel(rgb[i], exposure)));
   write_png_rgb8(path, width, height, bytes);
 }
 
 void write_png_rgb8(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> bytes) {
   const std::string where = "PNG '" + path.string() + "'";
-  if (width <= 0 || height <= 0) throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  if (width <= 0 || height <= 0)
+    throw InputError(where + ": image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
   const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
   if (bytes.size() != n) throw InputError(where + ": " + std::to_string(bytes.size()) + " bytes, expected " + std::to_string(n));
   write_atomically(path, [&](const std::filesystem::path& temp) {
@@ -79,7 +84,8 @@ void write_png_rgb8(const std::filesystem::path& path, int width, int height, st
 PngImage read_png_rgb8(const std::filesystem::path& path) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) throw InputError("cannot read PNG '" + path.string() + "': " + image.message);
+  if (!png_image_begin_read_from_file(&image, path.c_str()))
+    throw InputError("cannot read PNG '" + path.string() + "': " + image.message);
   image.format = PNG_FORMAT_RGB;
   PngImage out;
   out.width = static_cast<int>(image.width);

@@ -44,7 +44,8 @@ PointsTable read_points_csv(const std::filesystem::path& file) {
   const int cnx = csv.column("nx"), cny = csv.column("ny"), cnz = csv.column("nz");
   for (const auto& [c, n] : {std::pair{cx, "x"}, std::pair{cy, "y"}, std::pair{cz, "z"}})
     if (c < 0)
-      throw InputError(header_at + ": required column '" + n + "' is missing (columns x, y, z are required; nx, ny, nz optional)");
+      throw InputError(header_at + ": required column '" + n +
+                       "' is missing (columns x, y, z are required; nx, ny, nz optional)");
   const int normals = (cnx >= 0) + (cny >= 0) + (cnz >= 0);
   if (normals != 0 && normals != 3)
     throw InputError(header_at + ": normal columns must come together: found only some of nx, ny, nz");
@@ -73,8 +74,7 @@ PointsTable read_points_csv(const std::filesystem::path& file) {
   return table;
 }
 
-void write_points_csv(const std::filesystem::path& file, const PointsTable& table,
-                      const std::vector<std::string>& extra_columns,
+void write_points_csv(const std::filesystem::path& file, const PointsTable& table, const std::vector<std::string>& extra_columns,
                       const std::vector<std::vector<double>>& extra_values) {
   if (extra_columns.size() != extra_values.size())
     throw std::invalid_argument("write_points_csv: " + std::to_string(extra_columns.size()) + " column names but " +
@@ -82,10 +82,11 @@ void write_points_csv(const std::filesystem::path& file, const PointsTable& tabl
   for (std::size_t c = 0; c < extra_values.size(); ++c)
     if (extra_values[c].size() != table.rows.size())
       throw std::invalid_argument("write_points_csv: column '" + extra_columns[c] + "' has " +
-                                  std::to_string(extra_values[c].size()) + " values for " +
-                                  std::to_string(table.rows.size()) + " rows");
+                                  std::to_string(extra_values[c].size()) + " values for " + std::to_string(table.rows.size()) +
+                                  " rows");
   for (const auto& c : extra_columns)
-    if (std::any_of(table.header.begin(), table.header.end(), [&](const std::string& h) { return trim_csv_cell(h) == trim_csv_cell(c); }))
+    if (std::any_of(table.header.begin(), table.header.end(),
+                    [&](const std::string& h) { return trim_csv_cell(h) == trim_csv_cell(c); }))
       throw InputError("cannot write '" + file.string() + "': output column '" + c + "' already exists in the input '" +
                        table.file.string() + "'");
 

@@ -40,8 +40,7 @@ PointsTable read_points_csv(const std::filesystem::path& file);
 // extra_values is [column][row]; each column must have one value per row (std::invalid_argument
 // otherwise — a programming error, not a user error). Extra column names must not repeat an
 // input column (InputError).
-void write_points_csv(const std::filesystem::path& file, const PointsTable& table,
-                      const std::vector<std::string>& extra_columns,
+void write_points_csv(const std::filesystem::path& file, const PointsTable& table, const std::vector<std::string>& extra_columns,
                       const std::vector<std::vector<double>>& extra_values);
 
 }  // namespace skyband

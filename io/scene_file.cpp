@@ -22,13 +22,35 @@ namespace {
 
 // Keys a scene may hold (leaves). Tables whose sub-keys are free: materials.assign.
 const std::set<std::string>& known_keys() {
-  static const std::set<std::string> k = {
-      "meshes",          "materials.default", "camera.position",  "camera.look_at",     "camera.up",
-      "camera.fov_deg",  "sun.altitude_deg",  "sun.azimuth_deg",  "sun.latitude_deg",   "sun.longitude_deg",
-      "sun.elevation_m", "sun.time",          "sun.utc_offset_hours", "sky.model",      "sky.aod550",
-      "sky.angstrom_alpha", "sky.ozone_du",   "sky.zenith_luminance_cd_m2", "quality.bands", "quality.tolerance", "quality.visibility",
-      "quality.epsilon", "quality.samples",   "quality.paper_scale", "quality.reuse_block", "quality.reuse_tolerance", "image.width",     "image.height",
-      "image.exposure"};
+  static const std::set<std::string> k = {"meshes",
+                                          "materials.default",
+                                          "camera.position",
+                                          "camera.look_at",
+                                          "camera.up",
+                                          "camera.fov_deg",
+                                          "sun.altitude_deg",
+                                          "sun.azimuth_deg",
+                                          "sun.latitude_deg",
+                                          "sun.longitude_deg",
+                                          "sun.elevation_m",
+                                          "sun.time",
+                                          "sun.utc_offset_hours",
+                                          "sky.model",
+                                          "sky.aod550",
+                                          "sky.angstrom_alpha",
+                                          "sky.ozone_du",
+                                          "sky.zenith_luminance_cd_m2",
+                                          "quality.bands",
+                                          "quality.tolerance",
+                                          "quality.visibility",
+                                          "quality.epsilon",
+                                          "quality.samples",
+                                          "quality.paper_scale",
+                                          "quality.reuse_block",
+                                          "quality.reuse_tolerance",
+                                          "image.width",
+                                          "image.height",
+                                          "image.exposure"};
   return k;
 }
 
@@ -148,9 +170,12 @@ class Reader {
     const toml::node* n = get(key);
     if (!n) return std::nullopt;
     double v;
-    if (const auto* i = n->as_integer()) v = static_cast<double>(i->get());
-    else if (const auto* f = n->as_floating_point()) v = f->get();
-    else fail(key, n, "expected a number");
+    if (const auto* i = n->as_integer())
+      v = static_cast<double>(i->get());
+    else if (const auto* f = n->as_floating_point())
+      v = f->get();
+    else
+      fail(key, n, "expected a number");
     if (!std::isfinite(v)) fail(key, n, "not a finite number");
     if (v < lo || v > hi) fail(key, n, std::string("must be ") + range_text);
     return v;
@@ -193,9 +218,12 @@ class Reader {
     Vec3 v;
     for (std::size_t i = 0; i < 3; ++i) {
       const toml::node& e = *a->get(i);
-      if (const auto* x = e.as_integer()) v[static_cast<int>(i)] = static_cast<double>(x->get());
-      else if (const auto* f = e.as_floating_point()) v[static_cast<int>(i)] = f->get();
-      else fail(key, n, "expected an array of 3 numbers [x, y, z] (metres)");
+      if (const auto* x = e.as_integer())
+        v[static_cast<int>(i)] = static_cast<double>(x->get());
+      else if (const auto* f = e.as_floating_point())
+        v[static_cast<int>(i)] = f->get();
+      else
+        fail(key, n, "expected an array of 3 numbers [x, y, z] (metres)");
       if (!std::isfinite(v[static_cast<int>(i)])) fail(key, n, "not finite");
     }
     return v;
@@ -286,8 +314,8 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
     root = toml::parse(std::string_view(ascii.text()), std::string_view(file));
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
-    throw InputError(file + ":" + std::to_string(b.line) + ":" + std::to_string(ascii.original_column(b.line, b.column)) +
-                     ": " + printable_text(e.description()));
+    throw InputError(file + ":" + std::to_string(b.line) + ":" + std::to_string(ascii.original_column(b.line, b.column)) + ": " +
+                     printable_text(e.description()));
   }
   std::map<std::string, std::string> origins;
   for (const std::string& o : overrides) apply_override(root, o, origins);
@@ -315,8 +343,7 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
       if (status.type() == std::filesystem::file_type::not_found)
         r.fail("meshes", &e, "file not found: " + printable_text(p.string()));
       if (ec) r.fail("meshes", &e, "cannot use the mesh path '" + printable_text(p.string()) + "': " + ec.message());
-      if (!std::filesystem::is_regular_file(status))
-        r.fail("meshes", &e, "not a regular file: " + printable_text(p.string()));
+      if (!std::filesystem::is_regular_file(status)) r.fail("meshes", &e, "not a regular file: " + printable_text(p.string()));
       s.meshes.push_back(p);
     }
   }
@@ -370,7 +397,8 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
       const auto lat = r.number("sun.latitude_deg", -90, 90, "in [-90, 90] degrees");
       const auto lon = r.number("sun.longitude_deg", -180, 180, "in [-180, 180] degrees (east positive)");
       const auto time = r.string("sun.time", true);
-      if (!lat || !lon || !time) throw InputError(file + ": sun from place and time needs sun.latitude_deg, sun.longitude_deg and sun.time");
+      if (!lat || !lon || !time)
+        throw InputError(file + ": sun from place and time needs sun.latitude_deg, sun.longitude_deg and sun.time");
       in.latitude_deg = *lat;
       in.longitude_deg = *lon;
       if (auto el = r.number("sun.elevation_m", -500, 9000, "in [-500, 9000] metres")) in.elevation_m = *el;
@@ -414,7 +442,8 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
   if (auto v = r.number("sky.angstrom_alpha", -1, 4, "in [-1, 4]")) s.atmosphere.angstrom_alpha = *v;
   if (auto v = r.number("sky.ozone_du", 0, 1000, "in [0, 1000] DU")) s.atmosphere.ozone_du = *v;
   if (auto v = r.number("sky.zenith_luminance_cd_m2", 0, 1e7, "in [0, 1e7] cd/m2")) {
-    if (s.sky_spec.physical) r.fail("sky.zenith_luminance_cd_m2", r.get("sky.zenith_luminance_cd_m2"), "applies to CIE skies only");
+    if (s.sky_spec.physical)
+      r.fail("sky.zenith_luminance_cd_m2", r.get("sky.zenith_luminance_cd_m2"), "applies to CIE skies only");
     s.sky_spec.zenith_luminance_cd_m2 = *v;
   }
   try {
@@ -424,10 +453,14 @@ SceneDescription parse_scene(std::string_view text, const std::filesystem::path&
   }
   // quality
   if (auto v = r.string("quality.visibility")) {
-    if (*v == "auto") s.visibility = SkyFactorsMethod::automatic;
-    else if (*v == "exact") s.visibility = SkyFactorsMethod::exact;
-    else if (*v == "bands") s.visibility = SkyFactorsMethod::bands;
-    else r.fail("quality.visibility", r.get("quality.visibility"), "must be \"auto\", \"exact\" or \"bands\"");
+    if (*v == "auto")
+      s.visibility = SkyFactorsMethod::automatic;
+    else if (*v == "exact")
+      s.visibility = SkyFactorsMethod::exact;
+    else if (*v == "bands")
+      s.visibility = SkyFactorsMethod::bands;
+    else
+      r.fail("quality.visibility", r.get("quality.visibility"), "must be \"auto\", \"exact\" or \"bands\"");
   }
   if (auto v = r.integer("quality.bands", 1, 4096)) s.bands = *v;
   if (auto v = r.number("quality.tolerance", 0, 1, "in [0, 1] (0 = fixed number of bands)")) s.tolerance = *v;
@@ -458,7 +491,8 @@ TriangleSoup load_scene_geometry(const SceneDescription& scene, std::vector<std:
     for (std::size_t i = 0; i < slots; ++i) {
       const std::string usemtl = i < soup.material_names.size() ? soup.material_names[i] : std::string();
       std::string mat = scene.default_material;
-      if (auto it = scene.material_assignment.find(usemtl); it != scene.material_assignment.end()) mat = it->second;
+      if (auto it = scene.material_assignment.find(usemtl); it != scene.material_assignment.end())
+        mat = it->second;
       else
         for (const Material& m : builtin_materials())
           if (m.name == usemtl) mat = usemtl;

@@ -70,21 +70,21 @@
 #include <vector>
 
 #include "geometry/mesh/camera.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/mesh/triangle_soup.h"
+#include "geometry/visibility/sky_factors.h"
 #include "lighting/atmosphere/atmosphere.h"
 #include "lighting/sky/sky_model.h"
 
 namespace skyband {
 
 struct SceneDescription {
-  std::filesystem::path file;                      // the scene file (messages, provenance)
-  std::vector<std::filesystem::path> meshes;       // resolved against the scene file's folder
+  std::filesystem::path file;                 // the scene file (messages, provenance)
+  std::vector<std::filesystem::path> meshes;  // resolved against the scene file's folder
   std::string default_material = "diffuse-wall";
   std::map<std::string, std::string> material_assignment;  // usemtl name -> built-in material
-  CameraSpec camera;                               // includes image width/height
+  CameraSpec camera;                                       // includes image width/height
   double sun_altitude_deg = 50, sun_azimuth_deg = 180;
-  std::string sun_source = "given";                // "given" or the SPA inputs
+  std::string sun_source = "given";  // "given" or the SPA inputs
   AtmosphereParams atmosphere;
   std::string sky_model = "multiple";
   SkyModelSpec sky_spec;

@@ -43,8 +43,8 @@ struct Welder {
 };
 
 std::uint32_t read_u32_le(const unsigned char* p) {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 | static_cast<std::uint32_t>(p[2]) << 16 |
+         static_cast<std::uint32_t>(p[3]) << 24;
 }
 
 float read_f32_le(const unsigned char* p) {
@@ -120,8 +120,8 @@ PolygonSoup parse_ascii(const std::string& name, const std::string& bytes) {
       case Stage::kVertexOrEndloop:
         if (tokens[0] == "endloop") {
           if (corners < 3)
-            throw InputError(where(line) + "facet " + std::to_string(soup.polygon_count()) + " has " +
-                             std::to_string(corners) + " vertices, at least 3 needed");
+            throw InputError(where(line) + "facet " + std::to_string(soup.polygon_count()) + " has " + std::to_string(corners) +
+                             " vertices, at least 3 needed");
           soup.polygon_start.push_back(static_cast<std::uint32_t>(soup.indices.size()));
           stage = Stage::kEndfacet;
           return;
@@ -180,8 +180,7 @@ PolygonSoup parse_stl(const std::string& name, const std::string& bytes) {
     if (bytes.size() >= 84)
       throw InputError(name + ": neither ascii STL (no 'solid' at the start) nor binary STL (size " +
                        std::to_string(bytes.size()) + " bytes, but the header declares " +
-                       std::to_string(read_u32_le(reinterpret_cast<const unsigned char*>(bytes.data()) + 80)) +
-                       " facets = " +
+                       std::to_string(read_u32_le(reinterpret_cast<const unsigned char*>(bytes.data()) + 80)) + " facets = " +
                        std::to_string(84 + 50 * static_cast<std::uint64_t>(
                                                     read_u32_le(reinterpret_cast<const unsigned char*>(bytes.data()) + 80))) +
                        " bytes)");

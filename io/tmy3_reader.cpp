@@ -78,7 +78,8 @@ class Tmy3Parser {
 
  private:
   [[noreturn]] void fail(std::size_t line, std::string_view column, std::string_view value, const std::string& why) const {
-    throw InputError(name_ + ":" + std::to_string(line) + ": " + std::string(column) + " = '" + printable_text(value) + "': " + why);
+    throw InputError(name_ + ":" + std::to_string(line) + ": " + std::string(column) + " = '" + printable_text(value) +
+                     "': " + why);
   }
 
   double number(std::size_t line, std::string_view column, std::string_view text) const {
@@ -178,15 +179,18 @@ class Tmy3Parser {
     if (dew_ >= 0) {
       const double v = number(line, names_[std::size_t(dew_)], fields_[std::size_t(dew_)]);
       if (v > kMissing) {
-        if (!(v > -70 && v < 70)) fail(line, names_[std::size_t(dew_)], fields_[std::size_t(dew_)], "outside (-70, 70) degrees C");
+        if (!(v > -70 && v < 70))
+          fail(line, names_[std::size_t(dew_)], fields_[std::size_t(dew_)], "outside (-70, 70) degrees C");
         r.dew_point_C = v;
       }
     }
     if (albedo_ >= 0) {
       const double v = number(line, names_[std::size_t(albedo_)], fields_[std::size_t(albedo_)]);
       if (v > kMissing) {
-        if (v >= 0 && v <= 1) r.albedo = v;
-        else ++invalid_albedo_;
+        if (v >= 0 && v <= 1)
+          r.albedo = v;
+        else
+          ++invalid_albedo_;
       }
     }
     if (r.ghi_Wh_m2 > 0 || r.dhi_Wh_m2 > 0) daylight_ = true;
@@ -199,9 +203,11 @@ class Tmy3Parser {
     if (have_previous_) {
       const WeatherRecord& p = previous_;
       bool ok = false;
-      if (p.hour < 24) ok = r.month == p.month && r.day == p.day && r.hour == p.hour + 1;
+      if (p.hour < 24)
+        ok = r.month == p.month && r.day == p.day && r.hour == p.hour + 1;
       else if (r.hour == 1) {
-        const bool month_end = p.day >= max_month_length_days(p.month) || (p.month == 2 && p.day == 28 && !(r.month == 2 && r.day == 29));
+        const bool month_end =
+            p.day >= max_month_length_days(p.month) || (p.month == 2 && p.day == 28 && !(r.month == 2 && r.day == 29));
         ok = month_end ? r.month == p.month % 12 + 1 && r.day == 1 : r.month == p.month && r.day == p.day + 1;
       }
       if (!ok)
@@ -236,7 +242,8 @@ WeatherSeries read_weather_file(const std::filesystem::path& file) {
   std::size_t second = first_end == std::string::npos ? text.size() : first_end + 1;
   if (second < text.size() && text[second - 1] == '\r' && text[second] == '\n') ++second;
   if (std::string_view(text).substr(second).rfind("Date (MM/DD/YYYY)", 0) == 0) return Tmy3Parser(file, text).parse();
-  throw InputError(file.string() + ": neither an EPW file (first line LOCATION,...) nor a TMY3 CSV file (second line "
+  throw InputError(file.string() +
+                   ": neither an EPW file (first line LOCATION,...) nor a TMY3 CSV file (second line "
                    "Date (MM/DD/YYYY),Time (HH:MM),...)");
 }
 

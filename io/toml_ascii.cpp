@@ -18,18 +18,22 @@ std::string escape_code_point(char32_t c) {
   return buf;
 }
 
-bool is_forbidden_control(unsigned char c) { return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F; }
+bool is_forbidden_control(unsigned char c) {
+  return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F;
+}
 
 }  // namespace
 
 AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
   enum class State { kOutside, kComment, kBasic, kMlBasic, kLiteral, kMlLiteral } state = State::kOutside;
   std::size_t i = in.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // TOML allows a byte-order mark
-  std::uint32_t line = 1, col = 1;                          // of in[i], in the original text
-  std::uint32_t out_col = 1;                                // of the next character of text_
+  std::uint32_t line = 1, col = 1;                         // of in[i], in the original text
+  std::uint32_t out_col = 1;                               // of the next character of text_
   text_.reserve(in.size());
   expansions_.emplace_back();
-  const auto where = [&](std::uint32_t column) { return name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": "; };
+  const auto where = [&](std::uint32_t column) {
+    return name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+  };
   const auto at = [&](std::size_t k) { return i + k < in.size() ? in[i + k] : '\0'; };
   const auto run_of = [&](char q) {
     std::size_t n = 0;
@@ -45,7 +49,7 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
     col += chars;
   };
   const auto copy = [&](std::size_t n) { emit(in.substr(i, n), n, static_cast<std::uint32_t>(n)); };  // ASCII as is
-  const auto end_line = [&] {  // after copying a '\n'
+  const auto end_line = [&] {                                                                         // after copying a '\n'
     ++line;
     col = 1;
     out_col = 1;
@@ -87,12 +91,13 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
     }
     if (j >= in.size()) return;  // end of text: toml++'s own error
     const char d = in[j];
-    const auto shown = [&] { return d >= 0x20 && d < 0x7F ? std::string("'") + d + "'" : std::string("a control or non-ASCII character"); };
-    const bool key_start = (d >= 'A' && d <= 'Z') || (d >= 'a' && d <= 'z') || (d >= '0' && d <= '9') || d == '_' ||
-                           d == '-' || d == '"' || d == '\'' || d == ']';
+    const auto shown = [&] {
+      return d >= 0x20 && d < 0x7F ? std::string("'") + d + "'" : std::string("a control or non-ASCII character");
+    };
+    const bool key_start = (d >= 'A' && d <= 'Z') || (d >= 'a' && d <= 'z') || (d >= '0' && d <= '9') || d == '_' || d == '-' ||
+                           d == '"' || d == '\'' || d == ']';
     const std::string at_d = name + ":" + std::to_string(l) + ":" + std::to_string(k) + ": ";
-    if (header && !key_start)
-      throw InputError(at_d + "a table header holds a key (bare, or quoted), saw " + shown());
+    if (header && !key_start) throw InputError(at_d + "a table header holds a key (bare, or quoted), saw " + shown());
     if (!header && d == '}') throw InputError(at_d + "expected a value or ']' in the array, saw '}'");
   };
 
@@ -112,7 +117,8 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
           const std::string ch(in.substr(i, n));
           throw InputError(where(col) + "character '" + printable_text(ch) + "' (U+" + escape_code_point(c).substr(2) +
                            ") outside a string or comment: TOML keys and values other than strings are ASCII; quote a "
-                           "key that holds it (\"" + printable_text(ch) + "\" = ...)");
+                           "key that holds it (\"" +
+                           printable_text(ch) + "\" = ...)");
         }
         if (c == '[') {
           const bool header = nest.empty() && line_start;
@@ -135,8 +141,10 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
           copy(state == State::kMlBasic ? 3 : 1);
         } else if (c == '\'') {
           state = run_of('\'') >= 3 ? State::kMlLiteral : State::kLiteral;
-          if (state == State::kMlLiteral) emit("\"\"\"", 3, 3);
-          else emit("\"", 1, 1);
+          if (state == State::kMlLiteral)
+            emit("\"\"\"", 3, 3);
+          else
+            emit("\"", 1, 1);
         } else {
           copy(1);
           if (c == '\n') end_line();
@@ -166,8 +174,7 @@ AsciiToml::AsciiToml(std::string_view in, const std::string& name) {
             break;
           }
           const auto next = static_cast<unsigned char>(in[i + 1]);
-          if (next >= 0x80)
-            throw InputError(where(col) + "'\\' followed by a non-ASCII character is not a TOML escape sequence");
+          if (next >= 0x80) throw InputError(where(col) + "'\\' followed by a non-ASCII character is not a TOML escape sequence");
           check_control(next, col + 1);
           copy(2);
           if (next == '\n') end_line();

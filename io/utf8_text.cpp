@@ -24,15 +24,24 @@ std::size_t utf8_sequence_length(std::string_view text, std::size_t i, char32_t*
   std::size_t n = 0;
   unsigned char lo = 0x80, hi = 0xBF;
   char32_t c = 0;
-  if (b0 >= 0xC2 && b0 <= 0xDF) n = 2, c = b0 & 0x1Fu;
-  else if (b0 == 0xE0) n = 3, lo = 0xA0, c = b0 & 0x0Fu;
-  else if (b0 >= 0xE1 && b0 <= 0xEC) n = 3, c = b0 & 0x0Fu;
-  else if (b0 == 0xED) n = 3, hi = 0x9F, c = b0 & 0x0Fu;
-  else if (b0 >= 0xEE && b0 <= 0xEF) n = 3, c = b0 & 0x0Fu;
-  else if (b0 == 0xF0) n = 4, lo = 0x90, c = b0 & 0x07u;
-  else if (b0 >= 0xF1 && b0 <= 0xF3) n = 4, c = b0 & 0x07u;
-  else if (b0 == 0xF4) n = 4, hi = 0x8F, c = b0 & 0x07u;
-  else return 0;
+  if (b0 >= 0xC2 && b0 <= 0xDF)
+    n = 2, c = b0 & 0x1Fu;
+  else if (b0 == 0xE0)
+    n = 3, lo = 0xA0, c = b0 & 0x0Fu;
+  else if (b0 >= 0xE1 && b0 <= 0xEC)
+    n = 3, c = b0 & 0x0Fu;
+  else if (b0 == 0xED)
+    n = 3, hi = 0x9F, c = b0 & 0x0Fu;
+  else if (b0 >= 0xEE && b0 <= 0xEF)
+    n = 3, c = b0 & 0x0Fu;
+  else if (b0 == 0xF0)
+    n = 4, lo = 0x90, c = b0 & 0x07u;
+  else if (b0 >= 0xF1 && b0 <= 0xF3)
+    n = 4, c = b0 & 0x07u;
+  else if (b0 == 0xF4)
+    n = 4, hi = 0x8F, c = b0 & 0x07u;
+  else
+    return 0;
   if (i + n > text.size()) return 0;
   for (std::size_t k = 1; k < n; ++k) {
     const unsigned char b = byte(i + k);

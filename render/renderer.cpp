@@ -11,20 +11,22 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/core/thread_arena.h"
 #include "geometry/visibility/sky_visibility.h"
-#include "lighting/spectrum/colour.h"
 #include "lighting/integrals/sky_lut.h"
 #include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
+#include "lighting/sun/sun_shading.h"
 #include "render/specular_reuse.h"
 #include "render/specular_sky_colour.h"
-#include "lighting/sun/sun_shading.h"
-#include "geometry/core/thread_arena.h"
 
 namespace skyband {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // For each key, the index of its value among the distinct values (appended to `distinct` in
 // first-seen order).
@@ -189,38 +191,37 @@ RenderLayers shade(const GeometryPass& pass, const SkyLight& sky, std::span<cons
 
   std::vector<ShadedRgb> shaded(pass.surfaces.size());
   run_with_threads(settings.threads, [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        // Consecutive samples mostly lie on one plane and share its diffuse table:
-                        // the last one is kept while the cache would serve the same table.
-                        std::shared_ptr<const SkyLut> memo_lut;
-                        std::size_t memo_k = 0, memo_material = 0;
-                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                          const SurfaceSample& ss = pass.surfaces[k];
-                          const Material& m = *slot_materials[ss.material_slot];
-                          const bool sun_vis = pass.sun_visible[k] != 0;
-                          const PointVisibilityView view = pass.visibility.view(k);
-                          ShadedRgb& out = shaded[k];
-                          out.sun_diffuse = spectrum_to_linear_srgb(sun_diffuse_radiance(m, ss.normal, sun_dir, e_dn, sun_vis));
-                          out.sun_specular = spectrum_to_linear_srgb(
-                              sun_specular_radiance(m, ss.normal, sun_dir, ss.view_dir, e_dn, sun_vis, settings.paper_scale));
-                          if (m.specular_weight < 1.0) {
-                            double xyz[3];
-                            const std::size_t material = slot_diffuse[ss.material_slot];
-                            if (!memo_lut || material != memo_material ||
-                                !SkyLutCache::same_table(view, pass.visibility.view(memo_k))) {
-                              memo_lut = luts.projected_for(view, material);
-                              memo_material = material;
-                            }
-                            memo_k = k;
-                            diffuse_sky_channels(view, *memo_lut, xyz);
-                            out.sky_diffuse = xyz_to_linear_srgb(Xyz{xyz[0], xyz[1], xyz[2]});
-                          } else {
-                            out.sky_diffuse = Vec3::Zero();
-                          }
-                          out.sky_specular = Vec3::Zero();
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, pass.surfaces.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+          // Consecutive samples mostly lie on one plane and share its diffuse table:
+          // the last one is kept while the cache would serve the same table.
+          std::shared_ptr<const SkyLut> memo_lut;
+          std::size_t memo_k = 0, memo_material = 0;
+          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            const SurfaceSample& ss = pass.surfaces[k];
+            const Material& m = *slot_materials[ss.material_slot];
+            const bool sun_vis = pass.sun_visible[k] != 0;
+            const PointVisibilityView view = pass.visibility.view(k);
+            ShadedRgb& out = shaded[k];
+            out.sun_diffuse = spectrum_to_linear_srgb(sun_diffuse_radiance(m, ss.normal, sun_dir, e_dn, sun_vis));
+            out.sun_specular = spectrum_to_linear_srgb(
+                sun_specular_radiance(m, ss.normal, sun_dir, ss.view_dir, e_dn, sun_vis, settings.paper_scale));
+            if (m.specular_weight < 1.0) {
+              double xyz[3];
+              const std::size_t material = slot_diffuse[ss.material_slot];
+              if (!memo_lut || material != memo_material || !SkyLutCache::same_table(view, pass.visibility.view(memo_k))) {
+                memo_lut = luts.projected_for(view, material);
+                memo_material = material;
+              }
+              memo_k = k;
+              diffuse_sky_channels(view, *memo_lut, xyz);
+              out.sky_diffuse = xyz_to_linear_srgb(Xyz{xyz[0], xyz[1], xyz[2]});
+            } else {
+              out.sky_diffuse = Vec3::Zero();
+            }
+            out.sky_specular = Vec3::Zero();
+          }
+        });
   });
   // Specular sky: the ε-march, exactly at block corners and wherever the image is not flat.
   std::vector<Xyz> specular_xyz(pass.surfaces.size());

@@ -35,24 +35,24 @@
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"
+#include "geometry/bands/visibility_cache.h"
 #include "geometry/mesh/camera.h"
 #include "geometry/mesh/scene.h"
 #include "geometry/visibility/sky_factors.h"
-#include "geometry/bands/visibility_cache.h"
 #include "lighting/brdf/material.h"
-#include "lighting/sky/sky_model.h"
 #include "lighting/integrals/specular_sky.h"
+#include "lighting/sky/sky_model.h"
 
 namespace skyband {
 
 struct RenderSettings {
-  int samples_per_pixel = 1;       // anti-aliasing pattern of camera.h
+  int samples_per_pixel = 1;  // anti-aliasing pattern of camera.h
   // How the visible sky of each surface sample is found (geometry/visibility/sky_visibility.h): exact by
   // default, cut along `visibility.bands` sample lines (geometry/bands/sample_lines.h); or the band
   // method's own geometry pass.
   SkyFactorsMethod method = SkyFactorsMethod::automatic;
-  VisibilityOptions visibility;    // bands (N), tolerance (0 = fixed N), offsets
-  SpecularSkyOptions specular;    // ε and steps of the partial-sky march (specular_sky.h)
+  VisibilityOptions visibility;  // bands (N), tolerance (0 = fixed N), offsets
+  SpecularSkyOptions specular;   // ε and steps of the partial-sky march (specular_sky.h)
   // Image-space reuse of the specular sky term (specular_reuse.h): quadtree blocks of up to this
   // many pixels, interpolated where the corners' bilinear interpolation predicts the marched
   // centre within the tolerance (relative), for materials at least this rough. Block < 4 or
@@ -60,8 +60,8 @@ struct RenderSettings {
   int specular_reuse_block = 32;
   double specular_reuse_tolerance = 0.01;
   double specular_reuse_min_roughness = 0.05;
-  bool paper_scale = false;        // Cook–Torrance 1982 scale (×4) instead of the microfacet form
-  int threads = 0;                 // 0 = all cores
+  bool paper_scale = false;  // Cook–Torrance 1982 scale (×4) instead of the microfacet form
+  int threads = 0;           // 0 = all cores
 };
 
 // One primary-ray hit.
@@ -79,12 +79,12 @@ struct GeometryPass {
   std::vector<std::uint32_t> sample_surface;  // per pixel sample (pixel·samples + i): surface or kBackground
   std::vector<Vec3> sample_direction;         // per pixel sample: unit primary-ray direction
   std::vector<SurfaceSample> surfaces;
-  VisibilityCache visibility;                 // entry k belongs to surfaces[k]
-  std::vector<std::string> material_slots;    // the scene's material names (TriangleSoup::material_names)
+  VisibilityCache visibility;               // entry k belongs to surfaces[k]
+  std::vector<std::string> material_slots;  // the scene's material names (TriangleSoup::material_names)
   // Phase 1b state.
   Vec3 sun_direction{0, 0, 0};
   bool sun_set = false;
-  std::vector<std::uint8_t> sun_visible;      // per surface: 1 = the sun is not blocked
+  std::vector<std::uint8_t> sun_visible;  // per surface: 1 = the sun is not blocked
   double trace_seconds = 0, visibility_seconds = 0, sun_seconds = 0;
 };
 

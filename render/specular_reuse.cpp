@@ -49,17 +49,23 @@ bool predicts(const Xyz (&c)[4], double fx, double fy, const Xyz& actual, double
 class Reuse {
  public:
   Reuse(const GeometryPass& pass, double tolerance, const std::function<bool(std::size_t)>& glossy,
-        const std::function<int(std::size_t)>& reuse_class, const std::function<Xyz(std::size_t)>& exact,
-        std::vector<Xyz>& out)
-      : pass_(pass), tolerance_(tolerance), glossy_(glossy), class_(reuse_class), exact_(exact), out_(out),
+        const std::function<int(std::size_t)>& reuse_class, const std::function<Xyz(std::size_t)>& exact, std::vector<Xyz>& out)
+      : pass_(pass),
+        tolerance_(tolerance),
+        glossy_(glossy),
+        class_(reuse_class),
+        exact_(exact),
+        out_(out),
         done_(pass.surfaces.size(), 0) {}
 
   // The surface of sample i of pixel (col, row); kBackground outside the image (so blocks that
   // overhang the image are never smooth and get split down to the image).
   std::uint32_t at(int col, int row, std::size_t i) const {
     if (col < 0 || row < 0 || col >= pass_.width || row >= pass_.height) return GeometryPass::kBackground;
-    return pass_.sample_surface[(static_cast<std::size_t>(row) * static_cast<std::size_t>(pass_.width) +
-                                 static_cast<std::size_t>(col)) * static_cast<std::size_t>(pass_.samples) + i];
+    return pass_
+        .sample_surface[(static_cast<std::size_t>(row) * static_cast<std::size_t>(pass_.width) + static_cast<std::size_t>(col)) *
+                            static_cast<std::size_t>(pass_.samples) +
+                        i];
   }
   bool glossy(std::uint32_t k) const { return k != GeometryPass::kBackground && glossy_(k); }
   // March surface k once (callers guarantee that no other thread touches k meanwhile).
@@ -149,8 +155,10 @@ void Reuse::refine(int xa, int xb, int ya, int yb, std::size_t i, int min_block,
   }
   if (xa >= pass_.width || ya >= pass_.height) return;  // wholly outside the image
   if (xb - xa <= min_block || yb - ya <= min_block) {
-    if (xb - xa == 4 && yb - ya == 4) halves(xa, ya, i, marched, interpolated);
-    else all_exact(xa, std::min(xb, pass_.width), ya, std::min(yb, pass_.height), i, marched);
+    if (xb - xa == 4 && yb - ya == 4)
+      halves(xa, ya, i, marched, interpolated);
+    else
+      all_exact(xa, std::min(xb, pass_.width), ya, std::min(yb, pass_.height), i, marched);
     return;
   }
   // Split in four (each child marches its corners first).
@@ -169,10 +177,9 @@ void Reuse::halves(int xa, int ya, std::size_t i, std::size_t& marched, std::siz
   // Rectangle [x0, x1] × [y0, y1] with its three check points (the midpoints of its long edges,
   // on the lattice, and its centre, marched here: the short direction is checked too); true if
   // it was smooth and interpolated.
-  const auto try_half = [&](int x0, int x1, int y0, int y1, const int (&check_x)[3], const int (&check_y)[3]) {
+  const auto try_half = [&](int x0, int x1, int y0, int y1, const int(&check_x)[3], const int(&check_y)[3]) {
     const std::uint32_t corner[4] = {at(x0, y0, i), at(x1, y0, i), at(x0, y1, i), at(x1, y1, i)};
-    const std::uint32_t check[3] = {at(check_x[0], check_y[0], i), at(check_x[1], check_y[1], i),
-                                    at(check_x[2], check_y[2], i)};
+    const std::uint32_t check[3] = {at(check_x[0], check_y[0], i), at(check_x[1], check_y[1], i), at(check_x[2], check_y[2], i)};
     const std::uint32_t ref = check[0];
     const int cls = glossy(ref) ? class_(ref) : -1;
     if (cls < 0) return false;
@@ -216,8 +223,7 @@ void Reuse::halves(int xa, int ya, std::size_t i, std::size_t& marched, std::siz
 SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block, double tolerance,
                                              const std::function<bool(std::size_t)>& glossy,
                                              const std::function<int(std::size_t)>& reuse_class,
-                                             const std::function<Xyz(std::size_t)>& exact, int threads,
-                                             std::vector<Xyz>& out) {
+                                             const std::function<Xyz(std::size_t)>& exact, int threads, std::vector<Xyz>& out) {
   const int w = pass.width, h = pass.height;
   const std::size_t spp = static_cast<std::size_t>(pass.samples);
   Reuse r(pass, tolerance, glossy, reuse_class, exact, out);

@@ -48,7 +48,6 @@ struct SpecularReuseStats {
 SpecularReuseStats shade_specular_with_reuse(const GeometryPass& pass, int block, double tolerance,
                                              const std::function<bool(std::size_t)>& glossy,
                                              const std::function<int(std::size_t)>& reuse_class,
-                                             const std::function<Xyz(std::size_t)>& exact, int threads,
-                                             std::vector<Xyz>& out);
+                                             const std::function<Xyz(std::size_t)>& exact, int threads, std::vector<Xyz>& out);
 
 }  // namespace skyband

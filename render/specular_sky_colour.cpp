@@ -46,9 +46,10 @@ Xyz ColourSpecularSky::integrate(const PointVisibilityView& view, const Vec3& vi
 #if defined(__GNUC__) && defined(__x86_64__)
 #define SKYBAND_AVX2_DISPATCH 1
 template <int R>
-__attribute__((target("avx2,fma"), flatten)) Xyz ColourSpecularSky::integrate_avx2(
-    const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, const SpecularSkyOptions& opt,
-    SpecularSkyStats& stats) const {
+__attribute__((target("avx2,fma"), flatten)) Xyz ColourSpecularSky::integrate_avx2(const PointVisibilityView& view,
+                                                                                   const Vec3& view_dir, const SpecularLobe& lobe,
+                                                                                   const SpecularSkyOptions& opt,
+                                                                                   SpecularSkyStats& stats) const {
   Policy<R, true> p{this};
   return to_xyz(specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats));
 }
@@ -78,9 +79,8 @@ Xyz ColourSpecularSky::radiance_xyz(const PointVisibilityView& view, const Vec3&
   return dispatch(view, view_dir, lobe, opt, stats_out, uses_avx2());
 }
 
-Xyz ColourSpecularSky::radiance_xyz_portable(const PointVisibilityView& view, const Vec3& view_dir,
-                                             const SpecularLobe& lobe, const SpecularSkyOptions& opt,
-                                             SpecularSkyStats* stats_out) const {
+Xyz ColourSpecularSky::radiance_xyz_portable(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                                             const SpecularSkyOptions& opt, SpecularSkyStats* stats_out) const {
   return dispatch(view, view_dir, lobe, opt, stats_out, false);
 }
 
@@ -93,10 +93,18 @@ Xyz ColourSpecularSky::dispatch(const PointVisibilityView& view, const Vec3& vie
     return avx2 ? integrate_avx2<R>(view, view_dir, lobe, opt, stats) : integrate<R>(view, view_dir, lobe, opt, stats);
   };
   switch (rank_) {
-    case 1: r = run.template operator()<1>(); break;
-    case 2: r = run.template operator()<2>(); break;
-    case 3: r = run.template operator()<3>(); break;
-    default: r = run.template operator()<4>(); break;
+    case 1:
+      r = run.template operator()<1>();
+      break;
+    case 2:
+      r = run.template operator()<2>();
+      break;
+    case 3:
+      r = run.template operator()<3>();
+      break;
+    default:
+      r = run.template operator()<4>();
+      break;
   }
   if (stats_out) *stats_out = stats;
   return r;

@@ -14,10 +14,10 @@
 #include <array>
 #include <memory>
 
-#include "lighting/spectrum/colour.h"
 #include "lighting/brdf/fresnel_factors.h"
-#include "lighting/sky/sky_radiance_grid.h"
 #include "lighting/integrals/specular_sky.h"
+#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
 
 namespace skyband {
 
@@ -121,7 +121,9 @@ class ColourSpecularSky {
       for (int j = 0; j < R; ++j) y += out.v[R + j];
       return std::max(y, 0.0);
     }
-    void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const { eval(q, n_dot_v, weight, out); }
+    void mirror(const Vec3& q, double n_dot_v, double weight, Value& out) const {
+      eval(q, n_dot_v, weight, out);
+    }
     double measure(const Value& x) const {
       double y = 0;
       for (int j = 0; j < R; ++j) y += x.v[R + j];
@@ -131,15 +133,15 @@ class ColourSpecularSky {
 
  private:
   template <int R>
-  Xyz integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-                const SpecularSkyOptions& opt, SpecularSkyStats& stats) const;
+  Xyz integrate(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, const SpecularSkyOptions& opt,
+                SpecularSkyStats& stats) const;
   // The same march compiled for AVX2 + FMA (specular_sky_colour.cpp), used when the processor
   // has them (checked once at run time).
   template <int R>
   Xyz integrate_avx2(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
                      const SpecularSkyOptions& opt, SpecularSkyStats& stats) const;
-  Xyz dispatch(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-               const SpecularSkyOptions& opt, SpecularSkyStats* stats_out, bool avx2) const;
+  Xyz dispatch(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, const SpecularSkyOptions& opt,
+               SpecularSkyStats* stats_out, bool avx2) const;
 
   const FresnelTable* fresnel_ = nullptr;
   std::shared_ptr<const FresnelFactors> factors_;  // nullptr: F = 1

@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
+# The sources' layout (.clang-format), before the build: a quick failure.
+scripts/check-format.sh
 # Warnings are errors in CI's build (GCC 12, Release, the project's warning flags).
 scripts/build.sh -DSKYBAND_WARNINGS_AS_ERRORS=ON
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build}

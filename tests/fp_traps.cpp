@@ -48,9 +48,12 @@ struct FpTraps {
     if (v == nullptr || *v == '\0' || std::strcmp(v, "0") == 0) return;
     int traps = 0;
     const char* names = "";
-    if (std::strcmp(v, "1") == 0) traps = FE_INVALID | FE_DIVBYZERO, names = "FE_INVALID and FE_DIVBYZERO";
-    else if (std::strcmp(v, "invalid") == 0) traps = FE_INVALID, names = "FE_INVALID";
-    else if (std::strcmp(v, "divbyzero") == 0) traps = FE_DIVBYZERO, names = "FE_DIVBYZERO";
+    if (std::strcmp(v, "1") == 0)
+      traps = FE_INVALID | FE_DIVBYZERO, names = "FE_INVALID and FE_DIVBYZERO";
+    else if (std::strcmp(v, "invalid") == 0)
+      traps = FE_INVALID, names = "FE_INVALID";
+    else if (std::strcmp(v, "divbyzero") == 0)
+      traps = FE_DIVBYZERO, names = "FE_DIVBYZERO";
     if (traps == 0) {
       std::fprintf(stderr, "SKYBAND_FP_TRAPS=%s: unknown value (1, invalid, divbyzero or 0); traps are off\n", v);
       std::abort();

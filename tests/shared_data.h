@@ -36,8 +36,7 @@ inline boost::unit_test::precondition needs_shared_data() {
                               "holding data/)";
       present.message() << why;
       // Boost.Test logs skips only at --log_level=test_suite; say it on stderr as well.
-      std::cerr << boost::unit_test::framework::get(id, boost::unit_test::TUT_ANY).p_name.get()
-                << ": skipped: " << why << '\n';
+      std::cerr << boost::unit_test::framework::get(id, boost::unit_test::TUT_ANY).p_name.get() << ": skipped: " << why << '\n';
     }
     return present;
   });

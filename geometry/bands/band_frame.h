@@ -23,15 +23,15 @@ namespace skyband {
 inline constexpr double kHorizontalAxisAzimuth = 0.3;
 
 struct BandFrame {
-  Vec3 x;            // pencil axis (unit, horizontal, in the face plane)
-  Vec3 h;            // z × x (unit, horizontal)
-  Vec3 z{0, 0, 1};   // up
-  Vec3 normal;       // unit face normal
+  Vec3 x;                    // pencil axis (unit, horizontal, in the face plane)
+  Vec3 h;                    // z × x (unit, horizontal)
+  Vec3 z{0, 0, 1};           // up
+  Vec3 normal;               // unit face normal
   double beta_rad = 0;       // elevation of the normal, n = cos β·h + sin β·z
   double delta_min_rad = 0;  // sky seen by the face: δ ∈ [delta_min, delta_max]
   double delta_max_rad = 0;
-  double s_min = 0;          // sin(δ_min − β)
-  double s_max = 0;          // sin(δ_max − β)
+  double s_min = 0;  // sin(δ_min − β)
+  double s_max = 0;  // sin(δ_max − β)
 
   // Total δ-weight W = ∫ cos(δ − β) dδ over the visible δ range (= s_max − s_min).
   double total_weight() const { return s_max - s_min; }

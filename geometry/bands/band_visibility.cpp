@@ -15,9 +15,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "geometry/bands/sky_integral.h"
 #include "geometry/core/exact_sign.h"
 #include "geometry/core/pseudo_angle.h"
-#include "geometry/bands/sky_integral.h"
 
 namespace skyband {
 
@@ -30,14 +30,14 @@ struct Span {
 
 // A sample half-plane through the point: all directions cos α·x + sin α·u, u = cos δ·h + sin δ·z.
 struct Plane {
-  double s = 0;            // weight coordinate sin(δ − β)
-  double delta = 0;        // radians
-  double pdelta = 0;       // pseudo-angle of δ in the (h, z) plane
+  double s = 0;       // weight coordinate sin(δ − β)
+  double delta = 0;   // radians
+  double pdelta = 0;  // pseudo-angle of δ in the (h, z) plane
   double cosd = 1, sind = 0;
-  Vec3 m;                  // plane normal −sin δ·h + cos δ·z (world frame, rounded once: *the* plane)
-  std::vector<Span> occluded;  // sorted, disjoint, merged
-  double line_integral = 0;    // ∫_visible sin²α dα (uniform sky, for refinement)
-  double exposure_integral = 0;  // ∫_visible sin α dα (solid angle, for refinement)
+  Vec3 m;                                // plane normal −sin δ·h + cos δ·z (world frame, rounded once: *the* plane)
+  std::vector<Span> occluded;            // sorted, disjoint, merged
+  double line_integral = 0;              // ∫_visible sin²α dα (uniform sky, for refinement)
+  double exposure_integral = 0;          // ∫_visible sin α dα (solid angle, for refinement)
   std::vector<VisibleInterval> visible;  // the cache's intervals of this line (finish_plane)
 };
 
@@ -45,11 +45,11 @@ struct Plane {
 // and the δ-midpoint, combined by the three-node rule of band_rule() below.
 struct BandState {
   double d0, d1;
-  int e0, c, e1;  // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
+  int e0, c, e1;     // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
   double error = 0;  // estimated error of the band's midpoint value, SVF units
   int depth = 0;
-  bool from_breakpoints = false;  // made by a breakpoint split: the next split bisects
-  double cached_error = -1;       // band_error() once computed (its lines never change), else −1
+  bool from_breakpoints = false;      // made by a breakpoint split: the next split bisects
+  double cached_error = -1;           // band_error() once computed (its lines never change), else −1
   double cached_exposure_error = -1;  // band_exposure_error(), with cached_error
 };
 
@@ -144,11 +144,11 @@ struct BandVisibility::Impl {
   // Per-point state (reused between points: no allocation in steady state).
   Vec3 p;
   BandFrame frame;
-  Eigen::Matrix3d local_from_world;   // rows x, h, z
+  Eigen::Matrix3d local_from_world;  // rows x, h, z
   Eigen::Matrix3d abs_local_from_world;
   std::vector<Plane> planes;
   std::size_t plane_count = 0;
-  std::vector<int> active;            // indices of the planes of this pass, sorted by pdelta
+  std::vector<int> active;  // indices of the planes of this pass, sorted by pdelta
   // The same planes, contiguous in that order with what the per-(triangle, plane) loop reads.
   struct ActivePlane {
     Vec3 m;
@@ -168,7 +168,7 @@ struct BandVisibility::Impl {
   };
   std::vector<Block> blocks;
   std::vector<Span> scratch;
-  std::vector<double> active_keys;    // their pdelta
+  std::vector<double> active_keys;  // their pdelta
   std::vector<std::uint32_t> stack;
   // Pencil pseudo-angles of triangle edges (nearly) parallel to the axis that changed some
   // line's occlusion: where f(δ) steps (method.md §2). Refinement splits step bands there.
@@ -354,7 +354,10 @@ struct BandVisibility::Impl {
       while (x < b.common.size() && y < v.size()) {
         const double lo = std::max(b.common[x].lo, v[y].lo), hi = std::min(b.common[x].hi, v[y].hi);
         if (lo <= hi) scratch.push_back(Span{lo, hi});
-        if (b.common[x].hi < v[y].hi) ++x; else ++y;
+        if (b.common[x].hi < v[y].hi)
+          ++x;
+        else
+          ++y;
       }
       b.common.swap(scratch);
     }
@@ -641,8 +644,7 @@ struct BandVisibility::Impl {
   double band_error(const BandState& b) const {
     if (b.e0 < 0) return 0;
     const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
-    const double q = r.w0 * planes[b.e0].line_integral + r.wm * planes[b.c].line_integral +
-                     r.w1 * planes[b.e1].line_integral;
+    const double q = r.w0 * planes[b.e0].line_integral + r.wm * planes[b.c].line_integral + r.w1 * planes[b.e1].line_integral;
     double e = std::abs(q - r.m0 * planes[b.c].line_integral) / kPi;
     if (against_a_plane(b)) {
       const double f0 = planes[b.e0].line_integral, fc = planes[b.c].line_integral, f1 = planes[b.e1].line_integral;
@@ -786,9 +788,8 @@ struct BandVisibility::Impl {
       for (BandState& b : bands) b.error = std::max(b.cached_error, b.cached_exposure_error);
       std::vector<int> order(bands.size());
       for (std::size_t i = 0; i < bands.size(); ++i) order[i] = static_cast<int>(i);
-      std::sort(order.begin(), order.end(), [&](int a, int b) {
-        return bands[a].error > bands[b].error || (bands[a].error == bands[b].error && a < b);
-      });
+      std::sort(order.begin(), order.end(),
+                [&](int a, int b) { return bands[a].error > bands[b].error || (bands[a].error == bands[b].error && a < b); });
       std::sort(breakpoints.begin(), breakpoints.end());
       breakpoints.erase(std::unique(breakpoints.begin(), breakpoints.end()), breakpoints.end());
       const std::size_t first_new = plane_count;
@@ -908,11 +909,14 @@ struct BandVisibility::Impl {
   }
 };
 
-BandVisibility::BandVisibility(const Scene& scene, const VisibilityOptions& options)
-    : impl_(new Impl(scene, options)) {}
-BandVisibility::~BandVisibility() { delete impl_; }
+BandVisibility::BandVisibility(const Scene& scene, const VisibilityOptions& options) : impl_(new Impl(scene, options)) {}
+BandVisibility::~BandVisibility() {
+  delete impl_;
+}
 
-void BandVisibility::compute(const QueryPoint& q, VisibilityCache::PointResult& out) { impl_->compute(q, out); }
+void BandVisibility::compute(const QueryPoint& q, VisibilityCache::PointResult& out) {
+  impl_->compute(q, out);
+}
 
 void BandVisibility::visible_on_plane(const QueryPoint& q, double delta_rad, std::vector<VisibleInterval>& out) {
   out.clear();
@@ -937,8 +941,12 @@ bool BandVisibility::direction_visible(const QueryPoint& q, const Vec3& directio
   return !impl_->plane_blocked_at(pa);
 }
 
-std::size_t BandVisibility::last_triangle_tests() const { return impl_->triangle_tests; }
-std::size_t BandVisibility::last_plane_count() const { return impl_->plane_count; }
+std::size_t BandVisibility::last_triangle_tests() const {
+  return impl_->triangle_tests;
+}
+std::size_t BandVisibility::last_plane_count() const {
+  return impl_->plane_count;
+}
 
 namespace {
 // Points per chunk: at most 256 (the hand-over is a few µs against ~1 ms per point, and a large
@@ -984,9 +992,8 @@ void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> p
   if (progress) progress(points.size(), points.size());
 }
 
-VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
-                                   const VisibilityOptions& options, int threads,
-                                   const std::function<void(std::size_t, std::size_t)>& progress) {
+VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                                   int threads, const std::function<void(std::size_t, std::size_t)>& progress) {
   // Parts keyed by their first point (chunks arrive in any order), then concatenated in order.
   std::map<std::size_t, VisibilityCache> parts;
   std::mutex parts_mutex;

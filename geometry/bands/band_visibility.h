@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "geometry/bands/band_frame.h"
-#include "geometry/mesh/scene.h"
 #include "geometry/bands/visibility_cache.h"
+#include "geometry/mesh/scene.h"
 
 namespace skyband {
 
@@ -103,9 +103,8 @@ std::vector<SkyFactors> compute_sky_factors(const Scene& scene, std::span<const 
 
 // Computes the cache for many points with `threads` workers (0 = all cores). The result is
 // bit-identical whatever the thread count. `progress(done, total)` is called from one thread.
-VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points,
-                                   const VisibilityOptions& options, int threads = 0,
-                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                                   int threads = 0, const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 // The streaming form of the two functions above, for consumers that need more than the two
 // uniform-sky numbers but not the whole cache at once (memory O(chunk), not O(points × bands)):

@@ -21,8 +21,7 @@ struct Stretch {
 // Everything is done with unit direction vectors on the line's plane, span{x, u}: a direction d on
 // the line's upper half (d·u ≥ 0) is at α = atan2(d·u, d·x), so α_A < α_B ⟺
 // (A·x)(B·u) − (A·u)(B·x) > 0, and angles are taken only for the end points written out.
-void visible_on_sample_line(const VisibleSky& sky, const BandFrame& frame, double delta_rad,
-                            std::vector<VisibleInterval>& out) {
+void visible_on_sample_line(const VisibleSky& sky, const BandFrame& frame, double delta_rad, std::vector<VisibleInterval>& out) {
   if (sky.pieces.empty()) return;
   const std::size_t first = out.size();
   const double cd = std::cos(delta_rad), sd = std::sin(delta_rad);
@@ -95,8 +94,10 @@ void visible_on_sample_line(const VisibleSky& sky, const BandFrame& frame, doubl
     const float f0 = static_cast<float>(std::clamp(alpha(visible[i].a), 0.0, kPi));
     const float f1 = static_cast<float>(std::clamp(alpha(visible[last].b), 0.0, kPi));
     // (ends a rounding apart, e.g. a crossing found in two pieces, meet once stored as float)
-    if (out.size() > first && f0 <= out.back().alpha1_rad) out.back().alpha1_rad = std::max(out.back().alpha1_rad, f1);
-    else if (f1 > f0) out.push_back({f0, f1});
+    if (out.size() > first && f0 <= out.back().alpha1_rad)
+      out.back().alpha1_rad = std::max(out.back().alpha1_rad, f1);
+    else if (f1 > f0)
+      out.push_back({f0, f1});
     i = j;
   }
 }
@@ -130,8 +131,7 @@ int sample_lines_of(const VisibleSky& sky, const SampleLineOptions& options, Vis
     }
     if (options.tolerance <= 0 || doubling >= options.max_doublings) return n;
     const double half = 0.5 * options.tolerance;
-    if (std::abs(svf / kPi - sky.factors.svf) <= half && std::abs(omega / (2 * kPi) - sky.factors.sky_exposure) <= half)
-      return n;
+    if (std::abs(svf / kPi - sky.factors.svf) <= half && std::abs(omega / (2 * kPi) - sky.factors.sky_exposure) <= half) return n;
   }
 }
 

@@ -26,13 +26,12 @@ namespace skyband {
 
 // The visible α-intervals (sorted, disjoint, within [0, π]) of the sample line at δ ∈ [0, π] of
 // `frame` in the exact region `sky`. Appends to `out`.
-void visible_on_sample_line(const VisibleSky& sky, const BandFrame& frame, double delta_rad,
-                            std::vector<VisibleInterval>& out);
+void visible_on_sample_line(const VisibleSky& sky, const BandFrame& frame, double delta_rad, std::vector<VisibleInterval>& out);
 
 struct SampleLineOptions {
-  int bands = 32;             // initial number of equal-weight bands (≥ 1)
-  double tolerance = 5e-4;    // target for |SVF − exact| and |exposure − exact|; 0: no doubling
-  int max_doublings = 6;      // the band count is doubled at most this many times
+  int bands = 32;           // initial number of equal-weight bands (≥ 1)
+  double tolerance = 5e-4;  // target for |SVF − exact| and |exposure − exact|; 0: no doubling
+  int max_doublings = 6;    // the band count is doubled at most this many times
 };
 
 // The cache entry of one point with an exact visible sky: its band records (each band one line at

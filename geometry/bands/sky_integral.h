@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/core/gauss_legendre.h"
 #include "geometry/bands/visibility_cache.h"
+#include "geometry/core/gauss_legendre.h"
 
 namespace skyband {
 
@@ -16,7 +16,9 @@ inline double uniform_sky_primitive(double alpha_rad) {
 }
 
 // Interval end points are stored as float; float(π) rounds above π, so clamp on the way out.
-inline double clamp_alpha(float alpha_rad) { return std::min(static_cast<double>(alpha_rad), kPi); }
+inline double clamp_alpha(float alpha_rad) {
+  return std::min(static_cast<double>(alpha_rad), kPi);
+}
 
 // Cosine-weighted sky view factor E/π under a uniform sky: 1 for an open horizontal face,
 // 0.5 for an open vertical one.
@@ -75,7 +77,8 @@ void integrate_irradiance_channels(const PointVisibilityView& v, RadianceInto&& 
 template <class Radiance>
 double integrate_irradiance(const PointVisibilityView& v, Radiance&& radiance, double max_step_rad = 0.05) {
   double e;
-  integrate_irradiance_channels<1>(v, [&](const Vec3& d, double* c) { c[0] = radiance(d); }, &e, max_step_rad);
+  integrate_irradiance_channels<1>(
+      v, [&](const Vec3& d, double* c) { c[0] = radiance(d); }, &e, max_step_rad);
   return e;
 }
 

@@ -54,8 +54,7 @@ void VisibilityCache::append(const VisibilityCache& other) {
 }
 
 std::size_t VisibilityCache::bytes() const {
-  return points_.size() * sizeof(PointRecord) + bands_.size() * sizeof(BandRecord) +
-         intervals_.size() * sizeof(VisibleInterval);
+  return points_.size() * sizeof(PointRecord) + bands_.size() * sizeof(BandRecord) + intervals_.size() * sizeof(VisibleInterval);
 }
 
 }  // namespace skyband

@@ -20,16 +20,16 @@ struct VisibleInterval {
 };
 
 struct BandRecord {
-  float s0, s1;                 // weight-space edges (s = sin(δ − β)), weight = s1 − s0
-  float delta_rad;              // sample plane of the band (its weight median)
-  std::uint32_t first_interval; // index into the interval array
+  float s0, s1;                  // weight-space edges (s = sin(δ − β)), weight = s1 − s0
+  float delta_rad;               // sample plane of the band (its weight median)
+  std::uint32_t first_interval;  // index into the interval array
   // The line's weight in δ (radians) for the solid angle Σ_b w_b ∫_visible sin α dα: with
   // refinement Simpson's weights (Δδ/6, 4Δδ/6, Δδ/6) per band, else the band's δ-width.
   float exposure_weight = 0;
 };
 
 struct PointRecord {
-  double normal[3];             // unit normal (the frame is rebuilt from it, bit-identically)
+  double normal[3];  // unit normal (the frame is rebuilt from it, bit-identically)
   std::uint32_t first_band;
   std::uint32_t band_count;
 };
@@ -57,7 +57,7 @@ class VisibilityCache {
   // Per-point result as produced by the visibility computation, before packing.
   struct PointResult {
     Vec3 normal;
-    std::vector<BandRecord> bands;            // first_interval relative to `intervals`
+    std::vector<BandRecord> bands;  // first_interval relative to `intervals`
     std::vector<VisibleInterval> intervals;
   };
 

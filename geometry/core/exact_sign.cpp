@@ -15,8 +15,8 @@ int exact_orientation_slow(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using P = K::Point_3;
   // det[a − d, b − d, c − d] = −det[b − a, c − a, d − a], and CGAL::orientation is the sign of the latter.
-  return -static_cast<int>(CGAL::orientation(P(a.x(), a.y(), a.z()), P(b.x(), b.y(), b.z()), P(c.x(), c.y(), c.z()),
-                                            P(d.x(), d.y(), d.z())));
+  return -static_cast<int>(
+      CGAL::orientation(P(a.x(), a.y(), a.z()), P(b.x(), b.y(), b.z()), P(c.x(), c.y(), c.z()), P(d.x(), d.y(), d.z())));
 }
 
 }  // namespace skyband

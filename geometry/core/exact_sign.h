@@ -32,8 +32,10 @@ inline int exact_dot_sign(const Vec3& m, const Vec3& d, double& value) {
     if (value < -bound) return -1;
   }
   const int s = exact_dot_sign_slow(m, d);
-  if (s == 0) value = 0;
-  else if (value * s <= 0) value = s * 1e-300;  // keep the float value's sign consistent
+  if (s == 0)
+    value = 0;
+  else if (value * s <= 0)
+    value = s * 1e-300;  // keep the float value's sign consistent
   return s;
 }
 

@@ -20,8 +20,8 @@ namespace skyband {
 // workers (0 = all cores); `make_state()` returns a std::unique_ptr<State> for each worker that
 // needs one. `progress(done, n)` after chunks, from one thread at a time (may be empty).
 template <class MakeState, class Body>
-void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads, const std::function<void(std::size_t, std::size_t)>& progress,
-                        MakeState&& make_state, Body&& body) {
+void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads,
+                        const std::function<void(std::size_t, std::size_t)>& progress, MakeState&& make_state, Body&& body) {
   using StatePtr = decltype(make_state());
   tbb::enumerable_thread_specific<StatePtr> states;
   const std::size_t chunks = (n + chunk - 1) / chunk;

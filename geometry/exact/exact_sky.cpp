@@ -41,8 +41,7 @@ double unwrapped(double t, double t_ref) {
 
 }  // namespace
 
-ExactSky::ExactSky(const Scene& scene, double surface_offset_m)
-    : set_(scene.occluders()), offset_m_(surface_offset_m) {}
+ExactSky::ExactSky(const Scene& scene, double surface_offset_m) : set_(scene.occluders()), offset_m_(surface_offset_m) {}
 
 void ExactSky::insert_back_of_face() {
   const Vec3& n = n_;
@@ -72,7 +71,8 @@ bool ExactSky::node_bounds(const Aabb& box, Bounds& out) const {
   const double y0 = box.lo.y() - p.y(), y1 = box.hi.y() - p.y();
   const double z0 = box.lo.z() - p.z(), z1 = box.hi.z() - p.z();
   // Behind the face: the largest n·(c − p) over the box's corners.
-  const double front = std::max(n_.x() * x0, n_.x() * x1) + std::max(n_.y() * y0, n_.y() * y1) + std::max(n_.z() * z0, n_.z() * z1);
+  const double front =
+      std::max(n_.x() * x0, n_.x() * x1) + std::max(n_.y() * y0, n_.y() * y1) + std::max(n_.z() * z0, n_.z() * z1);
   if (front < -1e-12 * (std::abs(x0) + std::abs(x1) + std::abs(y0) + std::abs(y1) + std::abs(z0) + std::abs(z1))) return false;
   const double dx = std::max({x0, -x1, 0.0}), dy = std::max({y0, -y1, 0.0});
   out.open = dx == 0 && dy == 0;
@@ -193,8 +193,10 @@ void ExactSky::project(const Occluder& o) {
         const std::uint32_t j = (i + 1) % k;
         const std::uint32_t c = edge_circle(i);
         if (c == kNoCircle) continue;
-        if (over) sky_.insert(c, OccludedSky::kZenith, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
-        else sky_.insert(OccludedSky::kGround, c, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
+        if (over)
+          sky_.insert(c, OccludedSky::kZenith, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
+        else
+          sky_.insert(OccludedSky::kGround, c, t[i], wx[i], wy[i], t[j], wx[j], wy[j]);
       }
       return;
     }
@@ -391,7 +393,8 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
     for (std::uint32_t j = 0; j < patch.member_count && over == 0; ++j) {
       const Occluder& o = set_.occluders[member[j]];
       bool contains = true;
-      for (std::uint32_t i = 0; i < o.count && contains; ++i) contains = exact_orient2d_sign(o.v[i], o.v[(i + 1) % o.count], p) * o.xy_sign >= 0;
+      for (std::uint32_t i = 0; i < o.count && contains; ++i)
+        contains = exact_orient2d_sign(o.v[i], o.v[(i + 1) % o.count], p) * o.xy_sign >= 0;
       if (!contains) continue;
       const int s3 = exact_orientation(o.v[0], o.v[1], o.v[2], p);
       if (s3 == 0) return false;  // p on the surface
@@ -404,8 +407,10 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
       if (c == kNoCircle) continue;
       const double ri = 1.0 / std::hypot(d[i].x(), d[i].y()), rj = 1.0 / std::hypot(d[j].x(), d[j].y());
       const double ti = diamond_angle(d[i].x(), d[i].y()), tj = diamond_angle(d[j].x(), d[j].y());
-      if (over > 0) sky_.insert(c, OccludedSky::kZenith, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
-      else sky_.insert(OccludedSky::kGround, c, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
+      if (over > 0)
+        sky_.insert(c, OccludedSky::kZenith, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
+      else
+        sky_.insert(OccludedSky::kGround, c, ti, d[i].x() * ri, d[i].y() * ri, tj, d[j].x() * rj, d[j].y() * rj);
     }
     if (beyond_every_plane(patch, -over)) return true;
     // Members on both sides of p: the elevation turns only at silhouette edges, so from over
@@ -417,13 +422,15 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
       if (patch_side_[edge.member[0]] == patch_side_[edge.member[1]]) continue;
       if (exact_orient2d_sign(edge.a, edge.b, p) == 0) {
         if (strictly_between_xy(edge.a, p, edge.b)) return false;  // through p's vertical
-        continue;                                                   // seen edge-on: no azimuth range
+        continue;                                                  // seen edge-on: no azimuth range
       }
       ArcVertex a, b;
       std::uint32_t c;
       if (!silhouette_arc(edge, 0, a, b, c)) return false;
-      if (over > 0) sky_.insert(c, OccludedSky::kZenith, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
-      else sky_.insert(OccludedSky::kGround, c, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
+      if (over > 0)
+        sky_.insert(c, OccludedSky::kZenith, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
+      else
+        sky_.insert(OccludedSky::kGround, c, a.t, a.wx, a.wy, b.t, b.wx, b.wy);
     }
     return true;
   }
@@ -445,7 +452,8 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
   // The forward chain f, f + 1, …, la (counter-clockwise round the patch) is the near one when p
   // lies right of its edges.
   int forward_side = 0;
-  for (std::uint32_t i = f; i != la && forward_side == 0; i = (i + 1) % k) forward_side = exact_orient2d_sign(v[i], v[(i + 1) % k], p);
+  for (std::uint32_t i = f; i != la && forward_side == 0; i = (i + 1) % k)
+    forward_side = exact_orient2d_sign(v[i], v[(i + 1) % k], p);
   if (forward_side == 0) return false;
   const bool forward_near = forward_side < 0;
   const auto chain = [&](bool forward, std::vector<ArcVertex>& out, std::vector<std::uint32_t>& circles) {
@@ -621,9 +629,8 @@ SkyFactors ExactSky::integrate(const OccludedSky& sky, const Vec3& n) {
   return integrate_occluded_sky(
       n,
       [&](auto&& f) {
-        sky.for_each_piece([&](double, double w0x, double w0y, double, double w1x, double w1y, std::span<const std::uint32_t> ids) {
-          f(w0x, w0y, w1x, w1y, ids);
-        });
+        sky.for_each_piece([&](double, double w0x, double w0y, double, double w1x, double w1y,
+                               std::span<const std::uint32_t> ids) { f(w0x, w0y, w1x, w1y, ids); });
       },
       [&](std::uint32_t c, double wx, double wy) { return sky.value(c, wx, wy); });
 }

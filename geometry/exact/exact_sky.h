@@ -97,16 +97,16 @@ class ExactSky {
   Vec3 p_{0, 0, 0}, n_{0, 0, 1};
   OccludedSky sky_;
   std::array<std::vector<std::uint32_t>, 128> buckets_;
-  std::vector<std::uint32_t> deferred_;       // nodes hidden only if the gaps closed
-  std::vector<std::uint32_t> small_;          // occluders seen small, projected last
-  double small_fraction_ = 5e-4;              // twice the solid angle (sr) below which an occluder is small
-  std::vector<std::uint32_t> opened_;         // per node: == generation_ once it must be opened
-  std::vector<std::uint32_t> patch_seen_;     // per height patch: == generation_ once projected
-  std::vector<std::uint32_t> patch_whole_;    // == generation_ when that projection was all of it
-  std::vector<Vec3> patch_d_;                 // scratch: boundary vertices relative to the point
-  std::vector<std::uint32_t> patch_circle_;   // scratch: circle per boundary edge
-  std::vector<double> patch_t_, patch_u_;     // scratch: their azimuths, and unwrapped
-  std::vector<int> patch_side_;               // scratch: the point's side of each member's plane
+  std::vector<std::uint32_t> deferred_;      // nodes hidden only if the gaps closed
+  std::vector<std::uint32_t> small_;         // occluders seen small, projected last
+  double small_fraction_ = 5e-4;             // twice the solid angle (sr) below which an occluder is small
+  std::vector<std::uint32_t> opened_;        // per node: == generation_ once it must be opened
+  std::vector<std::uint32_t> patch_seen_;    // per height patch: == generation_ once projected
+  std::vector<std::uint32_t> patch_whole_;   // == generation_ when that projection was all of it
+  std::vector<Vec3> patch_d_;                // scratch: boundary vertices relative to the point
+  std::vector<std::uint32_t> patch_circle_;  // scratch: circle per boundary edge
+  std::vector<double> patch_t_, patch_u_;    // scratch: their azimuths, and unwrapped
+  std::vector<int> patch_side_;              // scratch: the point's side of each member's plane
   std::vector<ArcVertex> near_, far_, edge_arc_ = std::vector<ArcVertex>(2);  // scratch: arc chains
   std::vector<std::uint32_t> near_circles_, far_circles_, edge_circle_ = std::vector<std::uint32_t>(1);
   std::uint32_t generation_ = 0;

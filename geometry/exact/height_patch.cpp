@@ -6,9 +6,9 @@
 #include <limits>
 #include <unordered_map>
 
-#include "geometry/mesh/boundary_cycle.h"
 #include "geometry/core/exact_sign.h"
 #include "geometry/exact/occluder_set.h"
+#include "geometry/mesh/boundary_cycle.h"
 #include "geometry/mesh/welding.h"
 
 namespace skyband {

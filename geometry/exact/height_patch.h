@@ -36,8 +36,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/scene.h"  // Aabb
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/scene.h"  // Aabb
 
 namespace skyband {
 

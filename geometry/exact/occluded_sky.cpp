@@ -72,7 +72,7 @@ bool OccludedSky::has_upper_intervals() const {
 
 std::size_t OccludedSky::piece_at(const std::vector<Piece>& pieces, double t) {
   std::size_t lo = 0, n = pieces.size();  // pieces[lo].t0 ≤ t (the first starts at the segment's start)
-  while (n > 1) {  // branch-free: the outcome of each step is unpredictable
+  while (n > 1) {                         // branch-free: the outcome of each step is unpredictable
     const std::size_t half = n / 2;
     lo = pieces[lo + half].t0 <= t ? lo + half : lo;
     n -= half;
@@ -115,8 +115,8 @@ void OccludedSky::insert_full_turn(std::uint32_t lo, std::uint32_t hi) {
   }
 }
 
-void OccludedSky::insert_range(std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way,
-                               double wbx, double wby) {
+void OccludedSky::insert_range(std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx,
+                               double wby) {
   const int g0 = std::min(kCoarseBins - 1, int(ta * kSegmentsPerUnit));
   int g1 = int(tb * kSegmentsPerUnit);
   if (double(g1) == tb * kSegmentsPerUnit) --g1;  // tb on a segment edge
@@ -151,9 +151,8 @@ int OccludedSky::order(std::uint32_t x, std::uint32_t y, double xa, double ya, d
   return dm > 0 ? 1 : dm < 0 ? -1 : 0;
 }
 
-bool OccludedSky::unite_sub_range(std::span<const std::uint32_t> b, const Piece& q, std::uint32_t lo, std::uint32_t hi,
-                                  double s0, double s0x, double s0y, const double* va, const double* vb, double s1x,
-                                  double s1y) {
+bool OccludedSky::unite_sub_range(std::span<const std::uint32_t> b, const Piece& q, std::uint32_t lo, std::uint32_t hi, double s0,
+                                  double s0x, double s0y, const double* va, const double* vb, double s1x, double s1y) {
   const std::size_t n = b.size();
   const auto keep = [&] { scratch_.push_back(NewPiece{s0, s0x, s0y, q.top, q.off, q.n, true}); };
   // va, vb: the values of b[0..n), lo, hi at the sub-range's two ends.
@@ -169,14 +168,18 @@ bool OccludedSky::unite_sub_range(std::span<const std::uint32_t> b, const Piece&
   std::size_t i = 0;
   while (i < n) {
     const int c = cmp(b[i], i, lo, n);
-    if (c < 0 || (c == 0 && (i & 1) == 0)) ++i;
-    else break;
+    if (c < 0 || (c == 0 && (i & 1) == 0))
+      ++i;
+    else
+      break;
   }
   std::size_t k = i;
   while (k < n) {
     const int c = cmp(b[k], k, hi, n + 1);
-    if (c < 0 || (c == 0 && (k & 1) == 0)) ++k;
-    else break;
+    if (c < 0 || (c == 0 && (k & 1) == 0))
+      ++k;
+    else
+      break;
   }
   if ((i & 1) && (k & 1) && i == k) {  // inside one interval already
     keep();
@@ -235,8 +238,10 @@ void OccludedSky::splice(int g, std::size_t lo_piece, std::size_t hi_piece, std:
   }
   for (std::size_t k = lo_piece; k < hi_piece; ++k) s.uppers -= pieces[k].n > 2;
   const std::size_t replaced = hi_piece - lo_piece;
-  if (n > replaced) pieces.insert(pieces.begin() + std::ptrdiff_t(hi_piece), n - replaced, Piece{});
-  else if (n < replaced) pieces.erase(pieces.begin() + std::ptrdiff_t(lo_piece + n), pieces.begin() + std::ptrdiff_t(hi_piece));
+  if (n > replaced)
+    pieces.insert(pieces.begin() + std::ptrdiff_t(hi_piece), n - replaced, Piece{});
+  else if (n < replaced)
+    pieces.erase(pieces.begin() + std::ptrdiff_t(lo_piece + n), pieces.begin() + std::ptrdiff_t(hi_piece));
   for (std::size_t k = 0; k < n; ++k) {
     const NewPiece& np = scratch_[k];
     Piece& q = pieces[lo_piece + k];
@@ -354,7 +359,7 @@ void OccludedSky::raise_in_segment(int g, std::uint32_t hi, double ta, double tb
   std::size_t n = 0;
   for (std::size_t k = 0; k < scratch_.size(); ++k) {
     const double end = k + 1 < scratch_.size() ? scratch_[k + 1].t0 : final_end;
-    if (end <= scratch_[k].t0) continue;                              // empty
+    if (end <= scratch_[k].t0) continue;                            // empty
     if (n > 0 && scratch_[n - 1].top == scratch_[k].top) continue;  // joins the previous
     scratch_[n++] = scratch_[k];
   }
@@ -362,8 +367,8 @@ void OccludedSky::raise_in_segment(int g, std::uint32_t hi, double ta, double tb
 }
 
 // Unites [lo, hi] over [ta, tb] inside segment g.
-void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax,
-                                    double way, double wbx, double wby) {
+void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way,
+                                    double wbx, double wby) {
   Segment& s = segments_[g];
   std::vector<Piece>& pieces = s.pieces;
   const std::size_t first = piece_at(pieces, ta);
@@ -379,8 +384,10 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
         double s1, e1x, e1y;
         end_of(g, j, s1, e1x, e1y);
         double u1, w1x, w1y;
-        if (tb < s1) u1 = tb, w1x = wbx, w1y = wby;
-        else u1 = s1, w1x = e1x, w1y = e1y;
+        if (tb < s1)
+          u1 = tb, w1x = wbx, w1y = wby;
+        else
+          u1 = s1, w1x = e1x, w1y = e1y;
         const double b0 = q.t0 == u0 ? q.g0 : value(q.top, w0x, w0y);
         const double b1 = u1 == s1 ? q.g1 : value(q.top, w1x, w1y);
         grounded = value(lo, w0x, w0y) <= b0 && value(lo, w1x, w1y) <= b1;
@@ -408,8 +415,10 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
     end_of(g, j, s1, e1x, e1y);
     if (q.t0 < u0) copy(q.t0, q.wx, q.wy, q);  // head outside [ta, tb]
     double u1, w1x, w1y;
-    if (tb < s1) u1 = tb, w1x = wbx, w1y = wby;
-    else u1 = s1, w1x = e1x, w1y = e1y;
+    if (tb < s1)
+      u1 = tb, w1x = wbx, w1y = wby;
+    else
+      u1 = s1, w1x = e1x, w1y = e1y;
     const std::span<const std::uint32_t> b = ids_of(s, q, two);
     // Quick case: hi at or below the grounded interval's top at both ends (so all over).
     const double vh0 = value(hi, w0x, w0y), vh1 = value(hi, w1x, w1y);
@@ -484,7 +493,8 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
       }
       cut(lo, n, hi, n + 1);
       if (cuts_.empty()) {
-        if (unite_sub_range(b, q, lo, hi, u0, w0x, w0y, v0, v1, w1x, w1y)) chg_lo = std::min(chg_lo, u0), chg_hi = std::max(chg_hi, u1);
+        if (unite_sub_range(b, q, lo, hi, u0, w0x, w0y, v0, v1, w1x, w1y))
+          chg_lo = std::min(chg_lo, u0), chg_hi = std::max(chg_hi, u1);
       } else {
         std::sort(cuts_.begin(), cuts_.end());
         cuts_.erase(std::unique(cuts_.begin(), cuts_.end()), cuts_.end());
@@ -504,7 +514,8 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
             a1 = u1, a1x = w1x, a1y = w1y;
             std::copy(v1, v1 + n + 2, vb);
           }
-          if (unite_sub_range(b, q, lo, hi, a0, a0x, a0y, va, vb, a1x, a1y)) chg_lo = std::min(chg_lo, a0), chg_hi = std::max(chg_hi, a1);
+          if (unite_sub_range(b, q, lo, hi, a0, a0x, a0y, va, vb, a1x, a1y))
+            chg_lo = std::min(chg_lo, a0), chg_hi = std::max(chg_hi, a1);
           a0 = a1, a0x = a1x, a0y = a1y;
           std::swap(va, vb);
         }
@@ -533,7 +544,7 @@ void OccludedSky::insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, d
   std::size_t n = 0;
   for (std::size_t k = 0; k < scratch_.size(); ++k) {
     const double end = k + 1 < scratch_.size() ? scratch_[k + 1].t0 : final_end;
-    if (end <= scratch_[k].t0) continue;  // empty
+    if (end <= scratch_[k].t0) continue;                        // empty
     if (n > 0 && same(scratch_[n - 1], scratch_[k])) continue;  // joins the previous
     scratch_[n++] = scratch_[k];
   }
@@ -665,8 +676,7 @@ bool OccludedSky::hidden(double lo, double hi, double top, double bottom) const 
   };
   for (int g = b0 / kFinePerCoarse; g <= b1 / kFinePerCoarse; ++g) {
     ensure_bins(g);
-    if (coarse_gmin_[g] >= top ||
-        (uppers && (coarse_cmax_[g] <= bottom || (coarse_flo_[g] <= bottom && coarse_fhi_[g] >= top))))
+    if (coarse_gmin_[g] >= top || (uppers && (coarse_cmax_[g] <= bottom || (coarse_flo_[g] <= bottom && coarse_fhi_[g] >= top))))
       continue;
     const int f0 = std::max(b0 + 1, g * kFinePerCoarse), f1 = std::min(b1 - 1, g * kFinePerCoarse + kFinePerCoarse - 1);
     for (int b = f0; b <= f1; ++b)

@@ -49,7 +49,7 @@ class OccludedSky {
   static constexpr int kCoarseBins = 32;
   static constexpr int kFinePerCoarse = 32;
   static constexpr int kBins = kCoarseBins * kFinePerCoarse;
-  static constexpr double kBinsPerUnit = kBins / 4.0;          // a power of two: bin edges are exact
+  static constexpr double kBinsPerUnit = kBins / 4.0;  // a power of two: bin edges are exact
   static constexpr double kSegmentsPerUnit = kCoarseBins / 4.0;
   // Circle ids: the nadir, the zenith and the point's horizontal plane.
   static constexpr std::uint32_t kGround = 0, kZenith = 1, kHorizon = 2;
@@ -116,11 +116,11 @@ class OccludedSky {
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
   struct Piece {
-    double t0;      // start; it ends where the next piece of its segment starts, or at the segment's end
-    double wx, wy;  // unit horizontal direction at t0
-    double g0, g1;  // tan e of the grounded interval's top (B₁) at the start and the end
-    double flo;     // an upper bound of the first floating interval's bottom (B₂) over the piece (+∞: none)
-    double cmax;    // an upper bound of the lowest ceiling's bottom over the piece (+∞: no ceiling)
+    double t0;             // start; it ends where the next piece of its segment starts, or at the segment's end
+    double wx, wy;         // unit horizontal direction at t0
+    double g0, g1;         // tan e of the grounded interval's top (B₁) at the start and the end
+    double flo;            // an upper bound of the first floating interval's bottom (B₂) over the piece (+∞: none)
+    double cmax;           // an upper bound of the lowest ceiling's bottom over the piece (+∞: no ceiling)
     std::uint32_t top;     // B₁
     std::uint32_t off, n;  // n boundaries: {kGround, top} when n = 2, else pool[off .. off + n)
   };
@@ -155,10 +155,9 @@ class OccludedSky {
     }
   }
   static std::size_t piece_at(const std::vector<Piece>& pieces, double t);
-  void insert_range(std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx,
-                    double wby);
-  void insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way,
-                         double wbx, double wby);
+  void insert_range(std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx, double wby);
+  void insert_in_segment(int g, std::uint32_t lo, std::uint32_t hi, double ta, double tb, double wax, double way, double wbx,
+                         double wby);
   // Unites [lo, hi] into one sub-range [s0, s1] of a piece whose boundaries are `b`, where no
   // circle crosses another; appends the resulting piece to scratch_. Whether the union grew.
   // va and vb hold the values of b's circles, then lo's and hi's, at its two ends.
@@ -192,7 +191,8 @@ class OccludedSky {
   mutable std::array<double, kBins> cmax_{};  // upper bound of the lowest ceiling's bottom (+∞: none somewhere)
   mutable std::array<double, kBins> flo_{};   // upper bound of the first floating interval's bottom (+∞: none somewhere)
   mutable std::array<double, kBins> fhi_{};   // exact minimum of its top (−∞: none somewhere)
-  mutable std::array<double, kBins> ohi_{};   // minimum of the first floating interval's top where there is one (not a ceiling), else of B₁
+  mutable std::array<double, kBins>
+      ohi_{};  // minimum of the first floating interval's top where there is one (not a ceiling), else of B₁
   mutable std::array<double, kCoarseBins> coarse_gmin_{};
   mutable std::array<double, kCoarseBins> coarse_ohi_{};
   mutable std::array<double, kCoarseBins> coarse_cmax_{};

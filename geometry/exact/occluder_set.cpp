@@ -4,9 +4,9 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "geometry/mesh/boundary_cycle.h"
 #include "geometry/core/disjoint_sets.h"
 #include "geometry/core/exact_sign.h"
+#include "geometry/mesh/boundary_cycle.h"
 #include "geometry/mesh/grouped_bvh.h"
 #include "geometry/mesh/welding.h"
 
@@ -45,7 +45,6 @@ struct PlaneOrientation {
     return exact_orient2d_sign(project(a), project(b), project(c));
   }
 };
-
 
 // Exact: does v lie strictly between u and w on their common line (u, v, w collinear)? Compared
 // along a coordinate in which u and w differ.
@@ -177,12 +176,12 @@ void build_bvh(OccluderSet& set, const std::vector<std::uint32_t>& component) {
   std::vector<Aabb> boxes(set.occluders.size());
   for (std::size_t i = 0; i < boxes.size(); ++i)
     for (std::uint32_t k = 0; k < set.occluders[i].count; ++k) boxes[i].extend(set.occluders[i].v[k]);
-  const std::vector<std::uint32_t> order = build_grouped_bvh(
-      boxes, component, kLeafSize, kComponentLeafSize, set.nodes,
-      [&](std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& ord) {
-        std::stable_sort(ord.begin() + first, ord.begin() + first + count,
-                         [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo.z() < boxes[b].lo.z(); });
-      });
+  const std::vector<std::uint32_t> order =
+      build_grouped_bvh(boxes, component, kLeafSize, kComponentLeafSize, set.nodes,
+                        [&](std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& ord) {
+                          std::stable_sort(ord.begin() + first, ord.begin() + first + count,
+                                           [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo.z() < boxes[b].lo.z(); });
+                        });
   std::vector<Occluder> sorted(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
     sorted[k] = set.occluders[order[k]];
@@ -208,8 +207,7 @@ OccluderSet build_occluder_set(const TriangleSoup& soup) {
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& tri = soup.triangles[t];
     const std::uint32_t a = id[tri[0]], b = id[tri[1]], c = id[tri[2]];
-    if (a == b || b == c || c == a ||
-        collinear(soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]])) {
+    if (a == b || b == c || c == a || collinear(soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]])) {
       ++set.degenerate_triangles;
       continue;
     }
@@ -303,7 +301,8 @@ OccluderSet build_occluder_set(const TriangleSoup& soup) {
       linked.unite(id[tri[0]], id[tri[2]]);
     }
   std::vector<std::uint32_t> component(set.occluders.size());
-  for (std::size_t i = 0; i < set.occluders.size(); ++i) component[i] = linked.find(id[soup.triangles[set.occluders[i].triangle][0]]);
+  for (std::size_t i = 0; i < set.occluders.size(); ++i)
+    component[i] = linked.find(id[soup.triangles[set.occluders[i].triangle][0]]);
   build_bvh(set, component);
   set.height_patches = build_height_patches(set.occluders);
   return set;

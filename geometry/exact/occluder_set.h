@@ -42,7 +42,7 @@ struct Occluder {
   std::uint8_t upper[4] = {0, 0, 0, 0};
   std::uint8_t upper_count = 0;  // 0: not vertical
   std::uint8_t across[2] = {0, 0};
-  double lower_top_z = 0;  // metres
+  double lower_top_z = 0;          // metres
   std::uint32_t patch = kNoPatch;  // the height patch it belongs to (geometry/exact/height_patch.h)
   double area2_m2 = 0;             // twice its area
 };
@@ -54,8 +54,8 @@ struct OccluderNode {
 };
 
 struct OccluderSet {
-  std::vector<Occluder> occluders;    // in the order of the leaves of `nodes`
-  std::vector<OccluderNode> nodes;    // node 0 the root
+  std::vector<Occluder> occluders;       // in the order of the leaves of `nodes`
+  std::vector<OccluderNode> nodes;       // node 0 the root
   std::size_t degenerate_triangles = 0;  // dropped: collinear or repeated vertices (no area)
   std::size_t merged_quads = 0;          // pairs of triangles merged into one quad
   std::size_t merged_regions = 0;        // regions of ≥ 3 coplanar triangles merged into a convex polygon

@@ -21,7 +21,7 @@ struct DirectedEdge {
   bool forward;          // traversed lo → hi
   std::uint32_t component;
   std::uint32_t triangle;
-  std::uint8_t side;     // k: the side v_k → v_{k+1}
+  std::uint8_t side;  // k: the side v_k → v_{k+1}
 };
 
 // For coplanar a, b, c, d: are c and d strictly on opposite sides of line ab? Exact, in the
@@ -29,8 +29,10 @@ struct DirectedEdge {
 bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 n = (b - a).cross(c - a);
   int drop = 2;  // the axis along the normal's largest component
-  if (std::abs(n.x()) >= std::abs(n.y()) && std::abs(n.x()) >= std::abs(n.z())) drop = 0;
-  else if (std::abs(n.y()) >= std::abs(n.z())) drop = 1;
+  if (std::abs(n.x()) >= std::abs(n.y()) && std::abs(n.x()) >= std::abs(n.z()))
+    drop = 0;
+  else if (std::abs(n.y()) >= std::abs(n.z()))
+    drop = 1;
   const auto proj = [drop](const Vec3& v) {
     return drop == 0 ? Vec3(v.y(), v.z(), 0) : drop == 1 ? Vec3(v.z(), v.x(), 0) : Vec3(v.x(), v.y(), 0);
   };
@@ -51,8 +53,8 @@ void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, const std::
     boxes[i].extend(edges[i].edge.a);
     boxes[i].extend(edges[i].edge.b);
   }
-  const std::vector<std::uint32_t> order =
-      build_grouped_bvh(boxes, edge_solid, 4, 4, out.edge_nodes, [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
+  const std::vector<std::uint32_t> order = build_grouped_bvh(boxes, edge_solid, 4, 4, out.edge_nodes,
+                                                             [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
   std::vector<Candidate> sorted(edges.size());
   for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = edges[order[k]];
   edges.swap(sorted);
@@ -121,8 +123,10 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     for (std::uint32_t t = 0; t < nt; ++t)
       for (std::uint32_t vi : soup.triangles[t]) {
         std::uint32_t& f = first_triangle[wid[vi]];
-        if (f == UINT32_MAX) f = t;
-        else comp.unite(f, t);
+        if (f == UINT32_MAX)
+          f = t;
+        else
+          comp.unite(f, t);
       }
   }
   std::vector<std::uint32_t> root(nt);

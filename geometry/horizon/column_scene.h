@@ -20,9 +20,9 @@
 // courtyards) is one; an overhang, a bridge or a floating box is not.
 //
 // From a point P outside every column solid with z_P ≥ the floor of every column solid it sees, and
-// every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is occluded exactly when it lies below the highest scene
-// point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a horizon
-// function of azimuth alone.
+// every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is occluded
+// exactly when it lies below the highest scene point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a
+// horizon function of azimuth alone.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -52,14 +52,14 @@ struct alignas(64) SilhouetteEdge {
 static_assert(sizeof(SilhouetteEdge) == 64);
 
 struct EdgeBvhNode {
-  Aabb box;                  // of the edges' ends
-  std::uint32_t first = 0;   // leaf: first edge; inner: left child (right = left + 1)
-  std::uint32_t count = 0;   // leaf: number of edges (> 0); inner: 0
+  Aabb box;                 // of the edges' ends
+  std::uint32_t first = 0;  // leaf: first edge; inner: left child (right = left + 1)
+  std::uint32_t count = 0;  // leaf: number of edges (> 0); inner: 0
 };
 
 struct ColumnScene {
   std::size_t column_solids = 0;
-  std::size_t other_components = 0;   // open, non-manifold, overhanging, ... components
+  std::size_t other_components = 0;                                      // open, non-manifold, overhanging, ... components
   double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres
   double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres
   double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
@@ -70,7 +70,7 @@ struct ColumnScene {
   // the solids' upper edges, and the method declines it), in the order of `edge_nodes`' leaves.
   std::vector<SilhouetteEdge> edges;
   std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
-  std::vector<EdgeBvhNode> edge_nodes;  // node 0 the root; children of an inner node at first, first + 1
+  std::vector<EdgeBvhNode> edge_nodes;                   // node 0 the root; children of an inner node at first, first + 1
   // Candidates continued by another collinear candidate at an end (faces split along the edge: a
   // wall split into a grid of cells has 11 candidates along its top where one would do).
   std::size_t split_edges = 0;

@@ -94,7 +94,8 @@ void HorizonEnvelope::insert_half_turn(std::uint32_t c, double t0, double tmid, 
     double ax, ay, bx, by;
     diamond_direction(a, ax, ay);
     diamond_direction(b, bx, by);
-    if (a < b) insert(c, a, b, ax, ay, bx, by);
+    if (a < b)
+      insert(c, a, b, ax, ay, bx, by);
     else {
       insert(c, a, 4.0, ax, ay, 1.0, 0.0);
       if (b > 0) insert(c, 0.0, b, 1.0, 0.0, bx, by);
@@ -123,7 +124,7 @@ void HorizonEnvelope::insert(std::uint32_t c, double ta, double tb, double wax, 
 
 std::size_t HorizonEnvelope::piece_at(const std::vector<Piece>& pieces, double t) {
   std::size_t lo = 0, n = pieces.size();  // pieces[lo].t0 ≤ t (the first starts at the segment's start)
-  while (n > 1) {  // branch-free: the outcome of each step is unpredictable
+  while (n > 1) {                         // branch-free: the outcome of each step is unpredictable
     const std::size_t half = n / 2;
     lo = pieces[lo + half].t0 <= t ? lo + half : lo;
     n -= half;
@@ -201,8 +202,10 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
       p1 = value(pc, w1x, w1y);
     } else {
       u1 = s1, p1 = q.v1;
-      if (last) w1x = end_x, w1y = end_y;
-      else w1x = pieces[j + 1].wx, w1y = pieces[j + 1].wy;
+      if (last)
+        w1x = end_x, w1y = end_y;
+      else
+        w1x = pieces[j + 1].wx, w1y = pieces[j + 1].wy;
     }
     const double c1 = value(c, w1x, w1y);
     const double e0 = c0 - p0, e1 = c1 - p1;
@@ -265,8 +268,10 @@ void HorizonEnvelope::insert_in_segment(int g, std::uint32_t c, double ta, doubl
   }
   // Splice scratch in place of [lo, hi).
   const std::size_t replaced = hi - lo;
-  if (n > replaced) pieces.insert(pieces.begin() + std::ptrdiff_t(hi), n - replaced, Piece{});
-  else if (n < replaced) pieces.erase(pieces.begin() + std::ptrdiff_t(lo + n), pieces.begin() + std::ptrdiff_t(hi));
+  if (n > replaced)
+    pieces.insert(pieces.begin() + std::ptrdiff_t(hi), n - replaced, Piece{});
+  else if (n < replaced)
+    pieces.erase(pieces.begin() + std::ptrdiff_t(lo + n), pieces.begin() + std::ptrdiff_t(hi));
   std::copy(scratch_.begin(), scratch_.begin() + std::ptrdiff_t(n), pieces.begin() + std::ptrdiff_t(lo));
   update_bins(g, changed_lo, changed_hi);
 }

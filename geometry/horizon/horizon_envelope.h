@@ -48,10 +48,14 @@ inline double diamond_angle(double x, double y) {
 // Unit horizontal direction of diamond angle t ∈ [0, 4].
 inline void diamond_direction(double t, double& wx, double& wy) {
   double x, y;
-  if (t < 1) x = 1 - t, y = t;
-  else if (t < 2) x = 1 - t, y = 2 - t;
-  else if (t < 3) x = t - 3, y = 2 - t;
-  else x = t - 3, y = t - 4;
+  if (t < 1)
+    x = 1 - t, y = t;
+  else if (t < 2)
+    x = 1 - t, y = 2 - t;
+  else if (t < 3)
+    x = t - 3, y = 2 - t;
+  else
+    x = t - 3, y = t - 4;
   const double r = 1.0 / std::sqrt(x * x + y * y);
   wx = x * r;
   wy = y * r;
@@ -150,10 +154,10 @@ class HorizonEnvelope {
 
  private:
   struct Piece {
-    double t0;         // start; the piece ends where the next of its segment begins, or at the segment's end
-    double wx, wy;     // unit horizontal direction at t0
+    double t0;      // start; the piece ends where the next of its segment begins, or at the segment's end
+    double wx, wy;  // unit horizontal direction at t0
     std::uint32_t circle;
-    double v0, v1;     // tan e at the start and the end (its minimum over the piece is one of them)
+    double v0, v1;  // tan e at the start and the end (its minimum over the piece is one of them)
   };
   static std::size_t piece_at(const std::vector<Piece>& pieces, double t);
   bool bin_at_least(int b, double lo, double hi, double bound) const;

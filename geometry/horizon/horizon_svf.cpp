@@ -45,7 +45,7 @@ struct HorizonSvf::Impl {
     // The great circle through p, lo and hi: the plane with normal m; along a unit horizontal
     // direction w, tan(elevation) = −(m_x w_x + m_y w_y)/m_z.
     const Vec3 m = lo.cross(hi);
-    if (!(m.z() != 0) || tlo == thi) return;  // radial or vertical: covers no azimuth range
+    if (!(m.z() != 0) || tlo == thi) return;                                     // radial or vertical: covers no azimuth range
     if (!std::isfinite(m.x() / m.z()) || !std::isfinite(m.y() / m.z())) return;  // a sliver of ~0 azimuth
     const double rl = 1.0 / std::sqrt(lo.x() * lo.x() + lo.y() * lo.y());
     const double rh = 1.0 / std::sqrt(hi.x() * hi.x() + hi.y() * hi.y());
@@ -89,11 +89,13 @@ struct HorizonSvf::Impl {
     int o2 = 2;  // orient2d(a, b, p), computed once if a face is vertical
     const auto side = [&](int k) {
       switch (e.face_kind[k]) {
-        case SilhouetteEdge::kHorizontal: return e.kind_sign[k] * (e.a.z() > p.z() ? 1 : e.a.z() < p.z() ? -1 : 0);  // c.z = a.z
+        case SilhouetteEdge::kHorizontal:
+          return e.kind_sign[k] * (e.a.z() > p.z() ? 1 : e.a.z() < p.z() ? -1 : 0);  // c.z = a.z
         case SilhouetteEdge::kVertical:
           if (o2 == 2) o2 = exact_orient2d_sign(e.a, e.b, p);
           return e.kind_sign[k] * o2;
-        default: return exact_orientation(e.a, e.b, columns.edge_third_vertices[index][k], p);
+        default:
+          return exact_orientation(e.a, e.b, columns.edge_third_vertices[index][k], p);
       }
     };
     const int f0 = e.facing_sign[0] * side(0);
@@ -326,14 +328,24 @@ struct HorizonSvf::Impl {
   }
 };
 
-void HorizonSvf::visible_fan(std::vector<SkyFanTriangle>& out) const { impl_->visible_fan(out); }
+void HorizonSvf::visible_fan(std::vector<SkyFanTriangle>& out) const {
+  impl_->visible_fan(out);
+}
 
 HorizonSvf::HorizonSvf(const Scene& scene, const ColumnScene& columns, double surface_offset_m)
     : impl_(std::make_unique<Impl>(scene, columns, surface_offset_m)) {}
 HorizonSvf::~HorizonSvf() = default;
-bool HorizonSvf::compute(const QueryPoint& q, SkyFactors& out) { return impl_->compute(q, out); }
-const HorizonEnvelope& HorizonSvf::envelope() const { return impl_->env; }
-std::size_t HorizonSvf::last_edge_tests() const { return impl_->edge_tests; }
-std::size_t HorizonSvf::last_envelope_pieces() const { return impl_->env.run_count(); }
+bool HorizonSvf::compute(const QueryPoint& q, SkyFactors& out) {
+  return impl_->compute(q, out);
+}
+const HorizonEnvelope& HorizonSvf::envelope() const {
+  return impl_->env;
+}
+std::size_t HorizonSvf::last_edge_tests() const {
+  return impl_->edge_tests;
+}
+std::size_t HorizonSvf::last_envelope_pieces() const {
+  return impl_->env.run_count();
+}
 
 }  // namespace skyband

@@ -14,8 +14,8 @@
 // The envelope (geometry/horizon/horizon_envelope.h) is kept over a pseudo-angle of azimuth as sorted
 // pieces, each one arc; the BVH is walked best first, the node that can rise highest first, and
 // nodes wholly below the current envelope (a conservative bound of their highest elevation
-// against binned minima of the envelope over their azimuth range) are skipped. Decisions that change the answer's topology are exact: which triangles lie wholly
-// below the point's horizontal (exact comparisons), whether the point is under a triangle
+// against binned minima of the envelope over their azimuth range) are skipped. Decisions that change the answer's topology are
+// exact: which triangles lie wholly below the point's horizontal (exact comparisons), whether the point is under a triangle
 // (exact orient2d / orient3d). Envelope values are constructions (rounding-level errors, and
 // continuous in them: no decision among nearly equal arcs can change the result by more than
 // their difference).
@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"
+#include "geometry/exact/sky_fan.h"
 #include "geometry/horizon/column_scene.h"
 #include "geometry/mesh/scene.h"
-#include "geometry/exact/sky_fan.h"
 
 namespace skyband {
 
@@ -56,7 +56,7 @@ class HorizonSvf {
   const HorizonEnvelope& envelope() const;
 
   // Statistics of the last compute() (benchmarks).
-  std::size_t last_edge_tests() const;       // silhouette candidates tested (not culled by their node)
+  std::size_t last_edge_tests() const;  // silhouette candidates tested (not culled by their node)
   std::size_t last_envelope_pieces() const;
 
  private:

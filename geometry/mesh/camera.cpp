@@ -15,21 +15,28 @@ std::string vec_text(const Vec3& v) {
   return s.str();
 }
 
-bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+bool finite(const Vec3& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
 
 }  // namespace
 
 std::vector<Vec2> pixel_sample_offsets(int samples) {
-  if (samples < 1 || samples > 4096)
-    throw InputError("samples per pixel " + std::to_string(samples) + ": must be in [1, 4096]");
+  if (samples < 1 || samples > 4096) throw InputError("samples per pixel " + std::to_string(samples) + ": must be in [1, 4096]");
   int a = 1;
   if (samples > 2) {
     const double target = samples * (std::sqrt(5.0) - 1.0) / 2.0;
     const int base = static_cast<int>(std::lround(target));
     // Nearest integer to the golden fraction that is coprime with S (search outward; 1 always is).
     for (int d = 0; d < samples; ++d) {
-      if (base - d >= 1 && std::gcd(base - d, samples) == 1) { a = base - d; break; }
-      if (base + d < samples && std::gcd(base + d, samples) == 1) { a = base + d; break; }
+      if (base - d >= 1 && std::gcd(base - d, samples) == 1) {
+        a = base - d;
+        break;
+      }
+      if (base + d < samples && std::gcd(base + d, samples) == 1) {
+        a = base + d;
+        break;
+      }
     }
   }
   std::vector<Vec2> o(static_cast<std::size_t>(samples));
@@ -46,13 +53,11 @@ PinholeCamera::PinholeCamera(const CameraSpec& spec) : spec_(spec) {
   if (!finite(spec.look_at)) throw InputError("camera.look_at " + vec_text(spec.look_at) + ": not finite");
   if (!finite(spec.up)) throw InputError("camera.up " + vec_text(spec.up) + ": not finite");
   const Vec3 d = spec.look_at - spec.position;
-  if (!(d.norm() > 0))
-    throw InputError("camera.look_at " + vec_text(spec.look_at) + ": equals camera.position");
+  if (!(d.norm() > 0)) throw InputError("camera.look_at " + vec_text(spec.look_at) + ": equals camera.position");
   forward_ = d.normalized();
   if (!(spec.up.norm() > 0)) throw InputError("camera.up " + vec_text(spec.up) + ": zero vector");
   const Vec3 r = forward_.cross(spec.up.normalized());
-  if (!(r.norm() > 1e-9))
-    throw InputError("camera.up " + vec_text(spec.up) + ": parallel to the view direction");
+  if (!(r.norm() > 1e-9)) throw InputError("camera.up " + vec_text(spec.up) + ": parallel to the view direction");
   right_ = r.normalized();
   up_ = right_.cross(forward_);
   if (!(spec.vertical_fov_deg > 0 && spec.vertical_fov_deg < 180))

@@ -13,17 +13,17 @@
 // with S); S = 1 is the pixel centre and S = 4 is the classic rotated grid (RGSS).
 #include <vector>
 
-#include "geometry/mesh/scene.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/scene.h"
 
 namespace skyband {
 
 struct CameraSpec {
-  Vec3 position{0, -10, 2};     // metres
-  Vec3 look_at{0, 0, 2};        // metres
-  Vec3 up{0, 0, 1};             // need not be unit or orthogonal to the view direction
-  double vertical_fov_deg = 45; // full angle, (0, 180)
-  int width = 640;              // pixels
+  Vec3 position{0, -10, 2};      // metres
+  Vec3 look_at{0, 0, 2};         // metres
+  Vec3 up{0, 0, 1};              // need not be unit or orthogonal to the view direction
+  double vertical_fov_deg = 45;  // full angle, (0, 180)
+  int width = 640;               // pixels
   int height = 480;
 };
 

@@ -16,8 +16,8 @@ namespace {
 void check_field(const HeightField& f) {
   if (f.columns == 0 || f.rows == 0) throw InputError("height field: no pixels");
   if (f.heights.size() != f.columns * f.rows)
-    throw InputError("height field: " + std::to_string(f.heights.size()) + " heights for " + std::to_string(f.columns) +
-                     " × " + std::to_string(f.rows) + " pixels");
+    throw InputError("height field: " + std::to_string(f.heights.size()) + " heights for " + std::to_string(f.columns) + " × " +
+                     std::to_string(f.rows) + " pixels");
   if (!std::isfinite(f.dx) || !std::isfinite(f.dy) || f.dx == 0 || f.dy == 0 || !std::isfinite(f.x0) || !std::isfinite(f.y0))
     throw InputError("height field: pixel steps " + std::to_string(f.dx) + ", " + std::to_string(f.dy) + " or origin " +
                      std::to_string(f.x0) + ", " + std::to_string(f.y0) + " not finite and non-zero");
@@ -80,8 +80,10 @@ class CornerVertices {
           continue;
         }
         const double z = f_.height(std::size_t(pc), std::size_t(pr));
-        if (std::isnan(z)) floor = true;
-        else h[n++] = z;
+        if (std::isnan(z))
+          floor = true;
+        else
+          h[n++] = z;
       }
     if (floor) h[n++] = floor_z;
     // Insertion sort of the n ≤ 5 heights: the result std::sort gives for so few (its final
@@ -116,7 +118,8 @@ TriangleSoup height_field_mesh(const HeightField& f, double floor_z) {
   if (!std::isfinite(floor_z)) throw InputError("height field: floor height not finite");
   for (const double h : f.heights)
     if (!(std::isnan(h) || h > floor_z))
-      throw InputError("height field: floor " + std::to_string(floor_z) + " m is not below the height " + std::to_string(h) + " m");
+      throw InputError("height field: floor " + std::to_string(floor_z) + " m is not below the height " + std::to_string(h) +
+                       " m");
   TriangleSoup soup;
   soup.material_names = {"top", "wall"};
   const CornerVertices v(f, floor_z, soup);
@@ -136,7 +139,8 @@ TriangleSoup height_field_mesh(const HeightField& f, double floor_z) {
     v.between(k2, lo, hi, right);
     std::size_t i = 0, j = 0;
     while (i + 1 < left.size() || j + 1 < right.size()) {
-      const bool up_left = j + 1 == right.size() || (i + 1 < left.size() && v.height_of(left[i + 1]) <= v.height_of(right[j + 1]));
+      const bool up_left =
+          j + 1 == right.size() || (i + 1 < left.size() && v.height_of(left[i + 1]) <= v.height_of(right[j + 1]));
       if (up_left) {
         soup.triangles.push_back({left[i], right[j], left[i + 1]});
         ++i;

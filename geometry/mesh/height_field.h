@@ -27,8 +27,8 @@ namespace skyband {
 
 struct HeightField {
   std::size_t columns = 0, rows = 0;
-  double x0 = 0, y0 = 0;  // metres: the outer corner of pixel (0, 0)
-  double dx = 1, dy = -1; // metres per pixel along columns and rows (signed, non-zero)
+  double x0 = 0, y0 = 0;   // metres: the outer corner of pixel (0, 0)
+  double dx = 1, dy = -1;  // metres per pixel along columns and rows (signed, non-zero)
   // Row-major heights (metres), rows × columns; NaN = no column (nodata).
   std::vector<double> heights;
 

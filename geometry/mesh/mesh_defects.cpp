@@ -18,8 +18,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 bool MeshDefects::any() const {
   return duplicate_vertex_positions || unreferenced_vertices || degenerate_index_triangles || zero_area_triangles ||
-         duplicate_triangles || boundary_edges || non_manifold_edges || inconsistently_oriented_edges ||
-         non_manifold_vertices;
+         duplicate_triangles || boundary_edges || non_manifold_edges || inconsistently_oriented_edges || non_manifold_vertices;
 }
 
 std::string MeshDefects::summary() const {
@@ -92,8 +91,8 @@ MeshDefects analyse_defects(const TriangleSoup& soup) {
     }
     if (w[0] != w[1] && w[1] != w[2] && w[0] != w[2])
       for (int k = 0; k < 3; ++k)
-        corners.push_back({w[static_cast<std::size_t>(k)], w[static_cast<std::size_t>((k + 1) % 3)],
-                           w[static_cast<std::size_t>((k + 2) % 3)]});
+        corners.push_back(
+            {w[static_cast<std::size_t>(k)], w[static_cast<std::size_t>((k + 1) % 3)], w[static_cast<std::size_t>((k + 2) % 3)]});
   }
   for (const char r : referenced)
     if (!r) ++d.unreferenced_vertices;
@@ -102,9 +101,8 @@ MeshDefects analyse_defects(const TriangleSoup& soup) {
   for (std::size_t i = 1; i < vertex_sets.size(); ++i)
     if (vertex_sets[i] == vertex_sets[i - 1]) ++d.duplicate_triangles;
 
-  std::sort(edges.begin(), edges.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
-  });
+  std::sort(edges.begin(), edges.end(),
+            [](const DirectedEdge& x, const DirectedEdge& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i, forward = 0;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) forward += edges[j++].forward;

@@ -21,12 +21,12 @@ struct MeshDefects {
   std::size_t unreferenced_vertices = 0;            // vertices used by no triangle
   std::size_t degenerate_index_triangles = 0;       // a vertex index repeated within a triangle
   // After welding:
-  std::size_t welded_vertices = 0;                  // distinct positions
-  std::size_t zero_area_triangles = 0;              // exactly collinear corners (exact predicate)
-  std::size_t duplicate_triangles = 0;              // same welded vertex set as an earlier triangle
-  std::size_t boundary_edges = 0;                   // edges with exactly 1 triangle
-  std::size_t non_manifold_edges = 0;               // edges with more than 2 triangles
-  std::size_t inconsistently_oriented_edges = 0;    // edges of 2 triangles, both in one direction
+  std::size_t welded_vertices = 0;                // distinct positions
+  std::size_t zero_area_triangles = 0;            // exactly collinear corners (exact predicate)
+  std::size_t duplicate_triangles = 0;            // same welded vertex set as an earlier triangle
+  std::size_t boundary_edges = 0;                 // edges with exactly 1 triangle
+  std::size_t non_manifold_edges = 0;             // edges with more than 2 triangles
+  std::size_t inconsistently_oriented_edges = 0;  // edges of 2 triangles, both in one direction
   // Triangles around the vertex form more than one fan (linked through shared edges); only
   // triangles with three distinct welded vertices take part.
   std::size_t non_manifold_vertices = 0;

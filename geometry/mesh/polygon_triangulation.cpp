@@ -1,10 +1,10 @@
 #include "geometry/mesh/polygon_triangulation.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <Eigen/Geometry>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +27,7 @@ using FaceBase = CGAL::Triangulation_face_base_with_info_2<int, Kernel, Constrai
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // Touching and overlapping constraints are fine; a crossing (which would need a constructed
 // intersection point) throws, and the caller falls back to a fan.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds,
-                                                        CGAL::No_constraint_intersection_requiring_constructions_tag>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 using Point2 = Kernel::Point_2;
 using VertexHandle = Cdt::Vertex_handle;
 
@@ -66,8 +65,7 @@ Point2 project(const Vec3& p, int drop, bool flip) {
 
 }  // namespace
 
-PolygonTriangulation triangulate_polygon_with_method(std::span<const Vec3> positions,
-                                                     std::span<const std::uint32_t> polygon) {
+PolygonTriangulation triangulate_polygon_with_method(std::span<const Vec3> positions, std::span<const std::uint32_t> polygon) {
   if (polygon.size() < 3) throw std::invalid_argument("triangulate_polygon: a polygon needs at least 3 vertices");
   for (const std::uint32_t i : polygon)
     if (i >= positions.size()) throw std::invalid_argument("triangulate_polygon: index " + std::to_string(i) + " out of range");

@@ -40,14 +40,20 @@ enum class PolygonTriangulationMethod {
 
 inline const char* to_string(PolygonTriangulationMethod m) {
   switch (m) {
-    case PolygonTriangulationMethod::kTriangle: return "triangle";
-    case PolygonTriangulationMethod::kConstrainedDelaunay: return "constrained Delaunay";
-    case PolygonTriangulationMethod::kFanZeroArea: return "fan (zero area)";
-    case PolygonTriangulationMethod::kFanSelfIntersecting: return "fan (self-crossing outline)";
+    case PolygonTriangulationMethod::kTriangle:
+      return "triangle";
+    case PolygonTriangulationMethod::kConstrainedDelaunay:
+      return "constrained Delaunay";
+    case PolygonTriangulationMethod::kFanZeroArea:
+      return "fan (zero area)";
+    case PolygonTriangulationMethod::kFanSelfIntersecting:
+      return "fan (self-crossing outline)";
   }
   return "?";
 }
-inline std::ostream& operator<<(std::ostream& os, PolygonTriangulationMethod m) { return os << to_string(m); }
+inline std::ostream& operator<<(std::ostream& os, PolygonTriangulationMethod m) {
+  return os << to_string(m);
+}
 
 struct PolygonTriangulation {
   std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into `positions`
@@ -57,8 +63,7 @@ struct PolygonTriangulation {
 // `polygon` holds indices into `positions` (≥ 3 of them; repeated indices allowed). Throws
 // std::invalid_argument on fewer than 3 indices or an index out of range (callers validate
 // user input first and report it as InputError).
-PolygonTriangulation triangulate_polygon_with_method(std::span<const Vec3> positions,
-                                                     std::span<const std::uint32_t> polygon);
+PolygonTriangulation triangulate_polygon_with_method(std::span<const Vec3> positions, std::span<const std::uint32_t> polygon);
 
 inline std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Vec3> positions,
                                                                      std::span<const std::uint32_t> polygon) {

@@ -23,8 +23,7 @@ using ConstrainedFaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel>;
 using FaceBase = CGAL::Triangulation_face_base_with_info_2<std::size_t, Kernel, ConstrainedFaceBase>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // A crossing of constraints (which would need a constructed point) throws; see the fallback.
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds,
-                                                        CGAL::No_constraint_intersection_requiring_constructions_tag>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 using Point2 = Kernel::Point_2;
 using VertexHandle = Cdt::Vertex_handle;
 
@@ -155,8 +154,7 @@ PolygonWithHolesTriangulation triangulate_polygon_with_holes(std::span<const Vec
       const VertexHandle p = f->vertex(Cdt::ccw(i)), q = f->vertex(Cdt::cw(i));  // f lies left of p→q
       const bool constrained = f->is_constrained(i);
       for (std::size_t r = 0; r < ring_count; ++r)
-        winding[g->info() * ring_count + r] =
-            winding[f->info() * ring_count + r] - (constrained ? net_left(p, q, r) : 0);
+        winding[g->info() * ring_count + r] = winding[f->info() * ring_count + r] - (constrained ? net_left(p, q, r) : 0);
       queue.push_back(g);
     }
   }

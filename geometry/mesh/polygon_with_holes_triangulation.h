@@ -28,8 +28,8 @@
 #include <span>
 #include <vector>
 
-#include "geometry/mesh/polygon_triangulation.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/polygon_triangulation.h"
 
 namespace skyband {
 

@@ -1,7 +1,7 @@
 #include "geometry/mesh/scene.h"
 
-#include "geometry/horizon/column_scene.h"
 #include "geometry/exact/occluder_set.h"
+#include "geometry/horizon/column_scene.h"
 
 #include <algorithm>
 #include <array>
@@ -29,7 +29,9 @@ double area(const Aabb& b) {
 
 }  // namespace
 
-Scene::Scene(TriangleSoup soup) : soup_(std::move(soup)) { build(); }
+Scene::Scene(TriangleSoup soup) : soup_(std::move(soup)) {
+  build();
+}
 
 const ColumnScene& Scene::column_scene() const {
   std::call_once(column_once_, [&] { column_scene_ = std::make_shared<const ColumnScene>(classify_column_scene(soup_)); });
@@ -61,7 +63,9 @@ void Scene::build() {
   }
   nodes_.reserve(2 * n / kLeafSize + 2);
   nodes_.push_back({});
-  struct Task { std::uint32_t node, first, count; };
+  struct Task {
+    std::uint32_t node, first, count;
+  };
   std::vector<Task> stack{{0, 0, n}};
   while (!stack.empty()) {
     const Task task = stack.back();
@@ -158,8 +162,8 @@ bool hit_box(const Aabb& b, const Vec3& o, const Vec3& inv_d, double t0, double 
 
 // Watertight ray/triangle intersection (Woop, Benthin, Wald, JCGT 2013): no ray slips through a
 // shared edge. Returns t and barycentrics.
-bool hit_triangle(const Vec3& o, const Vec3& d, int kz, int kx, int ky, const Vec3& shear,
-                  const Vec3& a0, const Vec3& b0, const Vec3& c0, double& t, double& u, double& v) {
+bool hit_triangle(const Vec3& o, const Vec3& d, int kz, int kx, int ky, const Vec3& shear, const Vec3& a0, const Vec3& b0,
+                  const Vec3& c0, double& t, double& u, double& v) {
   const Vec3 A = a0 - o, B = b0 - o, C = c0 - o;
   const double Ax = A[kx] - shear.x() * A[kz], Ay = A[ky] - shear.y() * A[kz];
   const double Bx = B[kx] - shear.x() * B[kz], By = B[ky] - shear.y() * B[kz];
@@ -223,8 +227,7 @@ std::optional<RayHit> Scene::intersect(const Ray& ray) const {
         const std::uint32_t tri = order_[i];
         const auto& ix = soup_.triangles[tri];
         double t, u, v;
-        if (hit_triangle(o, d, kz, kx, ky, shear, soup_.vertices[ix[0]], soup_.vertices[ix[1]],
-                         soup_.vertices[ix[2]], t, u, v) &&
+        if (hit_triangle(o, d, kz, kx, ky, shear, soup_.vertices[ix[0]], soup_.vertices[ix[1]], soup_.vertices[ix[2]], t, u, v) &&
             t > ray.t_min && t < t_max) {
           t_max = t;
           best = RayHit{t, tri, u, v};
@@ -235,7 +238,13 @@ std::optional<RayHit> Scene::intersect(const Ray& ray) const {
       const std::uint32_t l = node.first, r = node.first + 1;
       const double dl = (nodes_[l].box.centre() - o).squaredNorm();
       const double dr = (nodes_[r].box.centre() - o).squaredNorm();
-      if (dl < dr) { stack[sp++] = r; stack[sp++] = l; } else { stack[sp++] = l; stack[sp++] = r; }
+      if (dl < dr) {
+        stack[sp++] = r;
+        stack[sp++] = l;
+      } else {
+        stack[sp++] = l;
+        stack[sp++] = r;
+      }
     }
   }
   return best;

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/mesh/triangle_soup.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband {
 
@@ -18,8 +18,14 @@ struct OccluderSet;
 struct Aabb {
   Vec3 lo{+1e300, +1e300, +1e300};
   Vec3 hi{-1e300, -1e300, -1e300};
-  void extend(const Vec3& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
-  void extend(const Aabb& b) { lo = lo.cwiseMin(b.lo); hi = hi.cwiseMax(b.hi); }
+  void extend(const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void extend(const Aabb& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
   Vec3 centre() const { return 0.5 * (lo + hi); }
   bool empty() const { return lo.x() > hi.x(); }
 };
@@ -27,8 +33,8 @@ struct Aabb {
 // BVH node: leaves hold [first, first + count) of Scene::bvh_triangle_order().
 struct BvhNode {
   Aabb box;
-  std::uint32_t first = 0;   // leaf: first triangle slot; inner: index of the left child
-  std::uint32_t count = 0;   // leaf: number of triangles (> 0); inner: 0 (right child = left + 1)
+  std::uint32_t first = 0;  // leaf: first triangle slot; inner: index of the left child
+  std::uint32_t count = 0;  // leaf: number of triangles (> 0); inner: 0 (right child = left + 1)
 };
 
 struct Ray {
@@ -64,7 +70,9 @@ class Scene {
   // (no allocation once it has grown).
   template <class Visit>
   bool any_triangle_over(double x, double y, double z_min, std::vector<std::uint32_t>& stack, Visit&& visit) const {
-    const auto holds = [&](const Aabb& b) { return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y(); };
+    const auto holds = [&](const Aabb& b) {
+      return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y();
+    };
     if (nodes_.empty() || !holds(nodes_[0].box)) return false;
     stack.clear();
     stack.push_back(0);

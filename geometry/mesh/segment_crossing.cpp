@@ -52,7 +52,9 @@ bool coplanar_segment_meets(const Vec3& p, const Vec3& q, const Vec3& a, const V
 
 }  // namespace
 
-bool triangle_is_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) { return projection_axis(a, b, c) < 0; }
+bool triangle_is_degenerate(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return projection_axis(a, b, c) < 0;
+}
 
 SegmentCrossing segment_triangle_crossing(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
   // Boxes apart (exact comparisons: the segment lies in the box of its endpoints): no contact.

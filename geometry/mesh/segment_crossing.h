@@ -20,8 +20,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/scene.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/scene.h"
 
 namespace skyband {
 

@@ -12,7 +12,7 @@
 namespace skyband {
 
 struct TriangleSoup {
-  std::vector<Vec3> vertices;                        // metres, world frame, z up
+  std::vector<Vec3> vertices;  // metres, world frame, z up
   std::vector<std::array<std::uint32_t, 3>> triangles;
   // Optional per-triangle material index into material_names (empty = all material 0).
   std::vector<std::uint32_t> triangle_material;

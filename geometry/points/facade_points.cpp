@@ -111,8 +111,10 @@ void index_group_boxes(Groups& g) {
   for (std::uint32_t k = 0; k < g.box.size(); ++k) {
     const Aabb& b = g.box[k];
     if (b.empty()) continue;
-    const auto lo_i = std::size_t((b.lo.x() - g.origin[0]) / g.cell_m), hi_i = std::min(g.cells_x - 1, std::size_t((b.hi.x() - g.origin[0]) / g.cell_m));
-    const auto lo_j = std::size_t((b.lo.y() - g.origin[1]) / g.cell_m), hi_j = std::min(g.cells_y - 1, std::size_t((b.hi.y() - g.origin[1]) / g.cell_m));
+    const auto lo_i = std::size_t((b.lo.x() - g.origin[0]) / g.cell_m),
+               hi_i = std::min(g.cells_x - 1, std::size_t((b.hi.x() - g.origin[0]) / g.cell_m));
+    const auto lo_j = std::size_t((b.lo.y() - g.origin[1]) / g.cell_m),
+               hi_j = std::min(g.cells_y - 1, std::size_t((b.hi.y() - g.origin[1]) / g.cell_m));
     for (std::size_t j = lo_j; j <= hi_j; ++j)
       for (std::size_t i = lo_i; i <= hi_i; ++i) g.cell_groups[j * g.cells_x + i].push_back(k);
   }
@@ -179,7 +181,9 @@ FaceFrame face_frame(Vec3 n) {
   return f;
 }
 
-Vec3 in_frame(const FaceFrame& f, const Vec3& x) { return Vec3(f.u.dot(x), f.s.dot(x), 0); }
+Vec3 in_frame(const FaceFrame& f, const Vec3& x) {
+  return Vec3(f.u.dot(x), f.s.dot(x), 0);
+}
 
 // One candidate face: its frame, its corners in 3D and in (u, v), counter-clockwise, and the
 // range of the cells whose centres its (u, v) box holds.
@@ -244,7 +248,7 @@ constexpr std::array<std::array<double, 2>, 6> kTilts{
 
 // A worker's scratch (no allocation once grown).
 struct Scratch {
-  std::vector<std::uint32_t> stack;                            // BVH walks
+  std::vector<std::uint32_t> stack;                              // BVH walks
   std::vector<std::pair<std::uint32_t, std::uint8_t>> parities;  // inside test: group, 4 ray bits
 };
 
@@ -253,7 +257,8 @@ class FacadeBuilder {
   FacadeBuilder(const Scene& scene, const FacadePointsOptions& o)
       : scene_(scene), soup_(scene.soup()), o_(o), cls_(triangle_classes(soup_)), groups_(make_groups(soup_, cls_)) {
     zero_area_.resize(soup_.triangles.size());
-    for (std::size_t t = 0; t < zero_area_.size(); ++t) zero_area_[t] = triangle_is_degenerate(corner(t, 0), corner(t, 1), corner(t, 2));
+    for (std::size_t t = 0; t < zero_area_.size(); ++t)
+      zero_area_[t] = triangle_is_degenerate(corner(t, 0), corner(t, 1), corner(t, 2));
     has_terrain_ = std::find(cls_.begin(), cls_.end(), FaceClass::terrain) != cls_.end();
   }
 
@@ -298,8 +303,8 @@ void FacadeBuilder::check_cell_count() {
     if (wanted(cls_[t], g.frame.n) && g.i1 >= g.i0 && g.j1 >= g.j0) cells += g.cells();
   }
   if (!(cells <= double(o_.max_cells)))
-    throw InputError("--spacing " + number(o_.spacing_m) + ": " + number(cells) + " grid cells over the model's faces, more than " +
-                     std::to_string(o_.max_cells) + "; use a larger spacing");
+    throw InputError("--spacing " + number(o_.spacing_m) + ": " + number(cells) +
+                     " grid cells over the model's faces, more than " + std::to_string(o_.max_cells) + "; use a larger spacing");
 }
 
 // Parity (0, 1) of the group's triangles crossed by the segment from `from` along `direction`
@@ -353,7 +358,8 @@ Side FacadeBuilder::outward_by_vote(Scratch& sc, const Vec3& p, const FaceFrame&
 }
 
 // A surface in front of the point within D + 1 cm, or just behind it (header: "covered").
-bool FacadeBuilder::covered(Scratch& sc, const Vec3& p, const Vec3& n_out, std::uint32_t face, const FaceGrid& g, const Vec3& centre_uv) {
+bool FacadeBuilder::covered(Scratch& sc, const Vec3& p, const Vec3& n_out, std::uint32_t face, const FaceGrid& g,
+                            const Vec3& centre_uv) {
   const Vec3 from = p - kBehind_m * n_out, to = p + (o_.offset_m + kFrontMargin_m) * n_out;
   const std::uint32_t group = groups_.of_triangle[face];
   const Vec3 &fa = corner(face, 0), &fb = corner(face, 1), &fc = corner(face, 2);
@@ -361,8 +367,8 @@ bool FacadeBuilder::covered(Scratch& sc, const Vec3& p, const Vec3& n_out, std::
   for_each_triangle_near_segment(scene_, from, to, sc.stack, [&](std::uint32_t t) {
     if (hit || t == face || zero_area_[t]) return;
     const Vec3 &a = corner(t, 0), &b = corner(t, 1), &c = corner(t, 2);
-    const bool coplanar = exact_orientation(fa, fb, fc, a) == 0 && exact_orientation(fa, fb, fc, b) == 0 &&
-                          exact_orientation(fa, fb, fc, c) == 0;
+    const bool coplanar =
+        exact_orientation(fa, fb, fc, a) == 0 && exact_orientation(fa, fb, fc, b) == 0 && exact_orientation(fa, fb, fc, c) == 0;
     if (coplanar) {
       if (groups_.of_triangle[t] == group) return;
       std::array<Vec3, 3> uv{in_frame(g.frame, a), in_frame(g.frame, b), in_frame(g.frame, c)};
@@ -451,8 +457,10 @@ bool FacadeBuilder::inside_building(Scratch& sc, const Vec3& x, const FaceFrame&
         if (bits == 0) return;
         if (t == face) face_bits ^= bits;
         auto it = std::find_if(sc.parities.begin(), sc.parities.end(), [&](const auto& e) { return e.first == group; });
-        if (it == sc.parities.end()) sc.parities.emplace_back(group, bits);
-        else it->second ^= bits;
+        if (it == sc.parities.end())
+          sc.parities.emplace_back(group, bits);
+        else
+          it->second ^= bits;
       });
     }
     if (degenerate) continue;
@@ -478,8 +486,14 @@ void FacadeBuilder::add_face_points(Scratch& sc, std::uint32_t t, const FaceGrid
       const Vec3 p = point_at(g, centre_uv);
       Side side = outward_side(sc, p, g.frame, group);
       if (side == Side::open) side = outward_by_vote(sc, p, g.frame, group);
-      if (side == Side::enclosed) { ++out.enclosed; continue; }
-      if (side == Side::undecided) { ++out.undecided; continue; }
+      if (side == Side::enclosed) {
+        ++out.enclosed;
+        continue;
+      }
+      if (side == Side::undecided) {
+        ++out.undecided;
+        continue;
+      }
       double sign = side == Side::minus ? -1.0 : 1.0;
       FaceClass c = cls_[t];
       if (side == Side::open) {
@@ -490,17 +504,31 @@ void FacadeBuilder::add_face_points(Scratch& sc, std::uint32_t t, const FaceGrid
       }
       const Vec3 n_out = sign * g.frame.n;
       if (c == FaceClass::by_normal) {
-        if (std::abs(n_out.z()) <= kWallMaxNormalZ) c = FaceClass::wall;
-        else if (n_out.z() > 0) c = FaceClass::roof;
-        else { ++out.facing_down; continue; }
+        if (std::abs(n_out.z()) <= kWallMaxNormalZ)
+          c = FaceClass::wall;
+        else if (n_out.z() > 0)
+          c = FaceClass::roof;
+        else {
+          ++out.facing_down;
+          continue;
+        }
       } else if (c == FaceClass::roof && n_out.z() < 0) {
         ++out.facing_down;  // a roof surface that the parity finds facing down: not trusted
         continue;
       }
-      if (covered(sc, p, n_out, t, g, centre_uv)) { ++out.covered; continue; }
+      if (covered(sc, p, n_out, t, g, centre_uv)) {
+        ++out.covered;
+        continue;
+      }
       const Vec3 x = p + o_.offset_m * n_out;
-      if (has_terrain_ && under_terrain(sc, x)) { ++out.underground; continue; }
-      if (inside_building(sc, x, g.frame, t) || under_a_roof_from_inside(sc, x)) { ++out.inside; continue; }
+      if (has_terrain_ && under_terrain(sc, x)) {
+        ++out.underground;
+        continue;
+      }
+      if (inside_building(sc, x, g.frame, t) || under_a_roof_from_inside(sc, x)) {
+        ++out.inside;
+        continue;
+      }
       FacadePoint fp;
       fp.position = x;
       fp.normal = n_out;

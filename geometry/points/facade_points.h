@@ -78,18 +78,18 @@ namespace skyband {
 enum class FacadeSurface : std::uint8_t { wall, roof };
 
 struct FacadePointsOptions {
-  double spacing_m = 1;    // S, > 0
-  double offset_m = 0.1;   // D, in (0, 100]
+  double spacing_m = 1;   // S, > 0
+  double offset_m = 0.1;  // D, in (0, 100]
   bool walls = true, roofs = false;
   std::size_t max_cells = 20'000'000;  // grid cells over the candidate faces; InputError beyond
   int threads = 0;                     // 0 = all cores; the output does not depend on it
 };
 
 struct FacadePoint {
-  Vec3 position;             // metres: the centre moved offset_m along the normal
-  Vec3 normal;               // unit, outward
+  Vec3 position;  // metres: the centre moved offset_m along the normal
+  Vec3 normal;    // unit, outward
   std::uint32_t triangle = 0;
-  std::uint32_t group = 0;   // index into FacadePoints::group_names
+  std::uint32_t group = 0;  // index into FacadePoints::group_names
   FacadeSurface surface = FacadeSurface::wall;
   std::int64_t iu = 0, iv = 0;  // the cell in the outward frame: u = (iu + ½)·S, v = (iv + ½)·S
 };
@@ -99,17 +99,17 @@ struct FacadePoints {
   // The groups: CityObject ids, or "component K" (K from 0, in order of the lowest triangle).
   std::vector<std::string> group_names;
   bool groups_are_objects = false;
-  std::size_t faces = 0;          // triangles taking part (wall/roof candidates, non-zero area)
-  std::size_t zero_area = 0;      // candidate triangles of zero area: no points
-  std::size_t centres = 0;        // cell centres inside the faces
-  std::size_t facing_down = 0;    // outward normal down: floors, undersides (by the normal), or a
-                                  // semantic roof surface found facing down (a defective shell)
-  std::size_t enclosed = 0;       // enclosed on both sides by the own group
-  std::size_t covered = 0;        // a surface in front within D + 1 cm (or just behind)
-  std::size_t underground = 0;    // offset point under a terrain triangle
-  std::size_t inside = 0;         // offset point inside a building
-  std::size_t undecided = 0;      // every parity ray degenerate
-  std::size_t from_winding = 0;   // kept, outward taken from the winding (open on both sides)
+  std::size_t faces = 0;         // triangles taking part (wall/roof candidates, non-zero area)
+  std::size_t zero_area = 0;     // candidate triangles of zero area: no points
+  std::size_t centres = 0;       // cell centres inside the faces
+  std::size_t facing_down = 0;   // outward normal down: floors, undersides (by the normal), or a
+                                 // semantic roof surface found facing down (a defective shell)
+  std::size_t enclosed = 0;      // enclosed on both sides by the own group
+  std::size_t covered = 0;       // a surface in front within D + 1 cm (or just behind)
+  std::size_t underground = 0;   // offset point under a terrain triangle
+  std::size_t inside = 0;        // offset point inside a building
+  std::size_t undecided = 0;     // every parity ray degenerate
+  std::size_t from_winding = 0;  // kept, outward taken from the winding (open on both sides)
 };
 
 // Throws InputError for a spacing or offset out of range or no surface class asked for.

@@ -44,8 +44,9 @@ GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground,
   const double fx1 = std::ceil(area[2] / s), fy1 = std::ceil(area[3] / s);
   const double cols = std::max(1.0, fx1 - fx0), rows = std::max(1.0, fy1 - fy0);
   if (!(cols * rows <= double(o.max_nodes)))
-    throw InputError("--spacing " + number(s) + ": " + number(cols) + " × " + number(rows) + " grid nodes over the area, more than " +
-                     std::to_string(o.max_nodes) + "; use a larger spacing or --bounds");
+    throw InputError("--spacing " + number(s) + ": " + number(cols) + " × " + number(rows) +
+                     " grid nodes over the area, more than " + std::to_string(o.max_nodes) +
+                     "; use a larger spacing or --bounds");
   g.ix0 = static_cast<std::int64_t>(fx0), g.iy0 = static_cast<std::int64_t>(fy0);
   g.columns = static_cast<std::size_t>(cols), g.rows = static_cast<std::size_t>(rows);
   const bool has_ground = std::find(ground.begin(), ground.end(), true) != ground.end();
@@ -65,8 +66,8 @@ GroundGrid make_ground_grid(const Scene& scene, const std::vector<bool>& ground,
       scene.any_triangle_over(x, y, -std::numeric_limits<double>::infinity(), stack, [&](std::uint32_t t) {
         const auto& tri = soup.triangles[t];
         const Vec3 &A = v[tri[0]], &B = v[tri[1]], &C = v[tri[2]];
-        if (std::min({A.x(), B.x(), C.x()}) > x || std::max({A.x(), B.x(), C.x()}) < x ||
-            std::min({A.y(), B.y(), C.y()}) > y || std::max({A.y(), B.y(), C.y()}) < y)
+        if (std::min({A.x(), B.x(), C.x()}) > x || std::max({A.x(), B.x(), C.x()}) < x || std::min({A.y(), B.y(), C.y()}) > y ||
+            std::max({A.y(), B.y(), C.y()}) < y)
           return false;
         const int o0 = exact_orient2d_sign(A, B, C);
         const int o1 = exact_orient2d_sign(A, B, q), o2 = exact_orient2d_sign(B, C, q), o3 = exact_orient2d_sign(C, A, q);

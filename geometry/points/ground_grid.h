@@ -39,7 +39,7 @@ struct GroundGridOptions {
 
 struct GroundGridPoint {
   Vec3 position;
-  std::int64_t ix = 0, iy = 0;       // cell indices of the S-aligned raster (x_i = (ix + ½)·S)
+  std::int64_t ix = 0, iy = 0;        // cell indices of the S-aligned raster (x_i = (ix + ½)·S)
   std::int64_t ground_triangle = -1;  // the triangle it stands on, −1 on the floor plane
 };
 

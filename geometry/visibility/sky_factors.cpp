@@ -15,9 +15,9 @@ SkyFactorsRun compute_sky_factors(const Scene& scene, std::span<const QueryPoint
     run.column_solids = columns.column_solids;
     run.other_components = columns.other_components;
   }
-  const SkyMethodCounts counts = for_each_visible_sky(
-      scene, points, options, method, threads, progress, false,
-      [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) { run.factors[i] = sky.factors; });
+  const SkyMethodCounts counts =
+      for_each_visible_sky(scene, points, options, method, threads, progress, false,
+                           [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) { run.factors[i] = sky.factors; });
   run.by_horizon = counts.by_horizon;
   run.by_exact = counts.by_exact;
   run.by_bands = counts.by_bands;

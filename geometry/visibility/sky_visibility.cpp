@@ -3,13 +3,13 @@
 #include <atomic>
 #include <vector>
 
-#include "geometry/horizon/column_scene.h"
-#include "geometry/exact/exact_sky.h"
-#include "geometry/horizon/horizon_svf.h"
-#include "geometry/core/parallel_chunks.h"
-#include "geometry/points/point_order.h"
 #include "geometry/bands/sample_lines.h"
 #include "geometry/bands/sky_integral.h"
+#include "geometry/core/parallel_chunks.h"
+#include "geometry/exact/exact_sky.h"
+#include "geometry/horizon/column_scene.h"
+#include "geometry/horizon/horizon_svf.h"
+#include "geometry/points/point_order.h"
 
 namespace skyband {
 
@@ -91,10 +91,9 @@ SkyMethodCounts for_each_visible_sky(const Scene& scene, std::span<const QueryPo
   return {counts[0].load(), counts[1].load(), counts[2].load()};
 }
 
-VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const QueryPoint> points,
-                                         const VisibilityOptions& options, SkyFactorsMethod method, int threads,
-                                         const std::function<void(std::size_t, std::size_t)>& progress,
-                                         SkyMethodCounts* counts) {
+VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                                         SkyFactorsMethod method, int threads,
+                                         const std::function<void(std::size_t, std::size_t)>& progress, SkyMethodCounts* counts) {
   if (method == SkyFactorsMethod::bands) {
     if (counts) *counts = {0, 0, points.size()};
     return compute_visibility(scene, points, options, threads, progress);
@@ -103,10 +102,9 @@ VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const Que
   lines.bands = options.bands;
   lines.tolerance = options.tolerance;
   std::vector<VisibilityCache::PointResult> results(points.size());
-  const SkyMethodCounts c = for_each_visible_sky(scene, points, options, method, threads, progress, true,
-                                                 [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) {
-                                                   sample_lines_of(sky, lines, results[i]);
-                                                 });
+  const SkyMethodCounts c = for_each_visible_sky(
+      scene, points, options, method, threads, progress, true,
+      [&](std::size_t i, const VisibleSky& sky, SkyVisibility&) { sample_lines_of(sky, lines, results[i]); });
   if (counts) *counts = c;
   VisibilityCache cache;
   std::size_t bands = 0;

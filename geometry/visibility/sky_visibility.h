@@ -81,8 +81,8 @@ SkyMethodCounts for_each_visible_sky(const Scene& scene, std::span<const QueryPo
 // pass; the exact methods cut each point's exact visible sky along sample lines
 // (geometry/bands/sample_lines.h: options.bands lines, doubled until the lines' SVF and exposure are
 // within options.tolerance/2 of the exact values). In input order; the same whatever `threads`.
-VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const QueryPoint> points,
-                                         const VisibilityOptions& options, SkyFactorsMethod method, int threads = 0,
+VisibilityCache compute_visibility_cache(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
+                                         SkyFactorsMethod method, int threads = 0,
                                          const std::function<void(std::size_t, std::size_t)>& progress = {},
                                          SkyMethodCounts* counts = nullptr);
 

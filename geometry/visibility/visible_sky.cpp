@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/horizon/horizon_envelope.h"
 #include "geometry/exact/occluded_sky.h"
+#include "geometry/horizon/horizon_envelope.h"
 
 namespace skyband {
 
@@ -18,9 +18,12 @@ constexpr double kMargin = 1e-9;
 
 const char* sky_method_name(SkyMethod m) {
   switch (m) {
-    case SkyMethod::exact_horizon: return "exact horizon";
-    case SkyMethod::exact_union: return "exact union";
-    default: return "bands";
+    case SkyMethod::exact_horizon:
+      return "exact horizon";
+    case SkyMethod::exact_union:
+      return "exact union";
+    default:
+      return "bands";
   }
 }
 
@@ -88,8 +91,7 @@ void VisibleSky::fan(std::vector<SkyFanTriangle>& out) const {
     for (std::uint32_t k = 1; k < p.count; k += 2) {
       if (b[k] == kZenith) break;
       out.push_back({dir(b[k], p.w0x, p.w0y), dir(b[k], p.w1x, p.w1y), 1.0});
-      if (k + 1 < p.count && b[k + 1] != kZenith)
-        out.push_back({dir(b[k + 1], p.w0x, p.w0y), dir(b[k + 1], p.w1x, p.w1y), -1.0});
+      if (k + 1 < p.count && b[k + 1] != kZenith) out.push_back({dir(b[k + 1], p.w0x, p.w0y), dir(b[k + 1], p.w1x, p.w1y), -1.0});
     }
   }
 }
@@ -98,7 +100,8 @@ SkyFactors VisibleSky::integrate(const Vec3& n) const {
   return integrate_occluded_sky(
       n,
       [&](auto&& f) {
-        for (const Piece& p : pieces) f(p.w0x, p.w0y, p.w1x, p.w1y, std::span<const std::uint32_t>(ids.data() + p.first, p.count));
+        for (const Piece& p : pieces)
+          f(p.w0x, p.w0y, p.w1x, p.w1y, std::span<const std::uint32_t>(ids.data() + p.first, p.count));
       },
       [&](std::uint32_t c, double wx, double wy) { return value(c, wx, wy); });
 }

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"  // SkyFactors, QueryPoint
-#include "geometry/exact/sky_fan.h"
 #include "geometry/bands/visibility_cache.h"
+#include "geometry/exact/sky_fan.h"
 
 namespace skyband {
 
@@ -37,8 +37,8 @@ const char* sky_method_name(SkyMethod m);
 struct VisibleSky {
   static constexpr std::uint32_t kGround = 0, kZenith = 1;  // circle ids (tan e = −∞, +∞)
   struct Piece {
-    double t0, w0x, w0y;   // start: diamond angle and unit horizontal direction
-    double t1, w1x, w1y;   // end
+    double t0, w0x, w0y;         // start: diamond angle and unit horizontal direction
+    double t1, w1x, w1y;         // end
     std::uint32_t first, count;  // boundaries: ids[first .. first + count)
   };
 
@@ -138,7 +138,8 @@ SkyFactors integrate_occluded_sky(const Vec3& n, ForEachPiece&& for_each_piece, 
       if (k + 1 < ids.size()) fan(ids[k + 1], w0x, w0y, w1x, w1y, -1.0);
     }
     if (meridians) {
-      if (!have_prev) first.assign(ids.begin(), ids.end());
+      if (!have_prev)
+        first.assign(ids.begin(), ids.end());
       else if (!same(prev, ids))
         mer += (-n.x() * w0y + n.y() * w0x) * (visible_elevation(ids, w0x, w0y) - visible_elevation(prev, prev_x, prev_y));
       prev.assign(ids.begin(), ids.end());

@@ -9,12 +9,12 @@
 // geometry: meshes, calculation points, the visible sky of a point.
 #include "geometry/core/input_error.h"
 #include "geometry/core/vec3.h"
+#include "geometry/horizon/horizon_profile.h"
 #include "geometry/mesh/mesh_defects.h"
 #include "geometry/mesh/scene.h"
 #include "geometry/mesh/triangle_soup.h"
 #include "geometry/points/facade_points.h"
 #include "geometry/points/ground_grid.h"
-#include "geometry/horizon/horizon_profile.h"
 #include "geometry/visibility/sky_factors.h"
 #include "geometry/visibility/sky_visibility.h"
 #include "geometry/visibility/visible_sky.h"

@@ -35,11 +35,10 @@ constexpr double kOzoneTentWidth_m = 15e3;
 // Ozone absorption cross sections, m² per molecule, 233 K (Bremen data as tabulated in Bruneton's
 // kOzoneCrossSection, 10-nm means; RN §2.5), 380–780 nm.
 constexpr double kOzoneCrossSection_m2[kSpectrumSamples] = {
-    2.818e-28, 6.636e-28, 1.527e-27, 2.763e-27, 5.520e-27, 8.451e-27, 1.582e-26, 2.316e-26, 3.669e-26,
-    4.924e-26, 7.752e-26, 9.016e-26, 1.480e-25, 1.602e-25, 2.139e-25, 2.755e-25, 3.091e-25, 3.500e-25,
-    4.266e-25, 4.672e-25, 4.398e-25, 4.701e-25, 5.019e-25, 4.305e-25, 3.740e-25, 3.215e-25, 2.662e-25,
-    2.238e-25, 1.852e-25, 1.473e-25, 1.209e-25, 9.423e-26, 7.455e-26, 6.566e-26, 5.105e-26, 4.150e-26,
-    4.228e-26, 3.237e-26, 2.451e-26, 2.801e-26, 2.534e-26};
+    2.818e-28, 6.636e-28, 1.527e-27, 2.763e-27, 5.520e-27, 8.451e-27, 1.582e-26, 2.316e-26, 3.669e-26, 4.924e-26, 7.752e-26,
+    9.016e-26, 1.480e-25, 1.602e-25, 2.139e-25, 2.755e-25, 3.091e-25, 3.500e-25, 4.266e-25, 4.672e-25, 4.398e-25, 4.701e-25,
+    5.019e-25, 4.305e-25, 3.740e-25, 3.215e-25, 2.662e-25, 2.238e-25, 1.852e-25, 1.473e-25, 1.209e-25, 9.423e-26, 7.455e-26,
+    6.566e-26, 5.105e-26, 4.150e-26, 4.228e-26, 3.237e-26, 2.451e-26, 2.801e-26, 2.534e-26};
 
 // 8-point Gauss–Legendre rule on [−1, 1] (Abramowitz & Stegun table 25.4).
 constexpr double kGl8x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
@@ -77,7 +76,9 @@ double distance_to_sphere(double r, double mu, double R) {
 }
 
 // Radius after travelling s from radius r with direction cosine mu (law of cosines).
-double radius_at(double r, double mu, double s) { return std::sqrt(std::max(0.0, r * r + s * s + 2.0 * r * s * mu)); }
+double radius_at(double r, double mu, double s) {
+  return std::sqrt(std::max(0.0, r * r + s * s + 2.0 * r * s * mu));
+}
 
 void check_range(const char* name, double value, double lo, double hi) {
   if (!std::isfinite(value) || value < lo || value > hi) {
@@ -184,7 +185,9 @@ Atmosphere::Atmosphere(const AtmosphereParams& p) : p_(p) {
   build_column_table();
 }
 
-const AtmosphereParams& Atmosphere::params() const { return p_; }
+const AtmosphereParams& Atmosphere::params() const {
+  return p_;
+}
 
 double Atmosphere::rayleigh_density(double r_m) const {
   return std::exp(-(r_m - kGroundRadius_m) / kRayleighScaleHeight_m);
@@ -213,7 +216,9 @@ Spectrum Atmosphere::ozone_optical_depth() const {
   return beta_ozone_ * kOzoneTentWidth_m;
 }
 
-Spectrum Atmosphere::extraterrestrial_irradiance() { return astm_g173_extraterrestrial_10nm(); }
+Spectrum Atmosphere::extraterrestrial_irradiance() {
+  return astm_g173_extraterrestrial_10nm();
+}
 
 double Atmosphere::ground_horizon_mu(double r_m) const {
   if (r_m <= r_ground_) return 0.0;
@@ -270,8 +275,7 @@ ColumnLengths Atmosphere::column_to_top(double r_m, double mu) const {
   const double r_t = r_m * std::sqrt(std::max(0.0, 1.0 - mu * mu));
   const ColumnLengths full = column_up(*this, r_t, 0.0, r_ground_, p_.aerosol_scale_height_m);
   const ColumnLengths back = column_up(*this, r_m, -mu, r_ground_, p_.aerosol_scale_height_m);
-  return {2.0 * full.rayleigh_m - back.rayleigh_m, 2.0 * full.aerosol_m - back.aerosol_m,
-          2.0 * full.ozone_m - back.ozone_m};
+  return {2.0 * full.rayleigh_m - back.rayleigh_m, 2.0 * full.aerosol_m - back.aerosol_m, 2.0 * full.ozone_m - back.ozone_m};
 }
 
 // Table parametrisation of Bruneton & Neyret 2008 / Bruneton 2017 (GetTransmittanceTextureUv):
@@ -358,7 +362,7 @@ SkyRadianceParts Atmosphere::sky_radiance_parts(const Vec3& view_dir_in, const V
   const double L = distance_to_sphere(r_ground_, mu_v, kTopRadius_m);
   const Vec3 origin(0.0, 0.0, r_ground_);  // planet centre at the origin of this frame
   const double du = 1.0 / kViewSteps;
-  ColumnLengths view_col;                   // P → current node
+  ColumnLengths view_col;  // P → current node
   double prev_rho_r = 0, prev_rho_m = 0, prev_rho_o = 0, prev_jac = 0;
   Spectrum ms;
   for (int k = 0; k <= kViewSteps; ++k) {
@@ -460,9 +464,10 @@ void Atmosphere::build_multiple_scattering_table() const {
         const double dw = wt[a] * (kPi / kPhi) * 2.0;
         const double rr = x0.z();
         const bool ground = cos_t < ground_horizon_mu(rr);
-        const double t_end = ground ? std::max(0.0, -rr * cos_t - std::sqrt(std::max(0.0, rr * rr * (cos_t * cos_t - 1.0) +
-                                                                                          r_ground_ * r_ground_)))
-                                    : distance_to_sphere(rr, cos_t, top);
+        const double t_end =
+            ground
+                ? std::max(0.0, -rr * cos_t - std::sqrt(std::max(0.0, rr * rr * (cos_t * cos_t - 1.0) + r_ground_ * r_ground_)))
+                : distance_to_sphere(rr, cos_t, top);
         ColumnLengths col;
         double prev_r = 0, prev_m = 0, prev_o = 0;
         // Nodes s(u), u = k/kSteps, trapezoid in u: s = t·u² for rays leaving the densest air
@@ -488,13 +493,14 @@ void Atmosphere::build_multiple_scattering_table() const {
           bool shadow = false;
           const ColumnLengths sc = column_to_top_table(ry, y.dot(sun) / ry, shadow);
           for (int q = 0; q < kSpectrumSamples; ++q) {
-            const double tau = beta_rayleigh_[q] * col.rayleigh_m + beta_aerosol_ext_[q] * col.aerosol_m + beta_ozone_[q] * col.ozone_m;
+            const double tau =
+                beta_rayleigh_[q] * col.rayleigh_m + beta_aerosol_ext_[q] * col.aerosol_m + beta_ozone_[q] * col.ozone_m;
             const double bs = beta_rayleigh_[q] * rho_r + beta_aerosol_sca_[q] * rho_m;
             const double tv = std::exp(-tau);
             fms[q] += tv * bs * tw;
             if (!shadow) {
-              const double ts = std::exp(-(beta_rayleigh_[q] * sc.rayleigh_m + beta_aerosol_ext_[q] * sc.aerosol_m +
-                                           beta_ozone_[q] * sc.ozone_m));
+              const double ts = std::exp(
+                  -(beta_rayleigh_[q] * sc.rayleigh_m + beta_aerosol_ext_[q] * sc.aerosol_m + beta_ozone_[q] * sc.ozone_m));
               l2[q] += e0_[q] * tv * ts * bs * kIsotropicPhase * tw;
             }
           }

@@ -31,16 +31,16 @@
 
 namespace skyband {
 
-struct AtmosphereParams {            // parameters a user knows; documented defaults
-  double aod550 = 0.1;               // aerosol optical depth at 550 nm (vertical, from ground elevation)
-  double angstrom_alpha = 1.3;       // Ångström exponent: τ_a(λ) = aod550·(λ/550 nm)^−α
-  double ozone_du = 300;             // ozone column, Dobson units
-  double ground_elevation_m = 0;     // metres above sea level
+struct AtmosphereParams {         // parameters a user knows; documented defaults
+  double aod550 = 0.1;            // aerosol optical depth at 550 nm (vertical, from ground elevation)
+  double angstrom_alpha = 1.3;    // Ångström exponent: τ_a(λ) = aod550·(λ/550 nm)^−α
+  double ozone_du = 300;          // ozone column, Dobson units
+  double ground_elevation_m = 0;  // metres above sea level
   double aerosol_scale_height_m = 1200;
   double aerosol_single_scattering_albedo = 0.9;
-  double aerosol_asymmetry_g = 0.76; // Cornette–Shanks g
-  double ground_albedo = 0.1;        // used by multiple scattering
-  void validate() const;             // throws InputError naming the field and value
+  double aerosol_asymmetry_g = 0.76;  // Cornette–Shanks g
+  double ground_albedo = 0.1;         // used by multiple scattering
+  void validate() const;              // throws InputError naming the field and value
 };
 
 enum class ScatteringOrders { Single, Multiple };
@@ -75,7 +75,7 @@ class Atmosphere {
  public:
   explicit Atmosphere(const AtmosphereParams& p);
   const AtmosphereParams& params() const;
-  Spectrum rayleigh_optical_depth() const;        // vertical, ground to top (dimensionless)
+  Spectrum rayleigh_optical_depth() const;  // vertical, ground to top (dimensionless)
   Spectrum aerosol_optical_depth() const;
   Spectrum ozone_optical_depth() const;
   // Transmittance from ground along apparent altitude (radians, may be slightly negative near the horizon)

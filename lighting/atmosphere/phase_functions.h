@@ -7,7 +7,9 @@
 namespace skyband {
 
 // Rayleigh: p_R(μ) = 3/(16π)·(1 + μ²)   (Chandrasekhar 1950; Nishita et al. 1993 F(θ)/4π).
-inline double rayleigh_phase(double mu) { return 3.0 / (16.0 * kPi) * (1.0 + mu * mu); }
+inline double rayleigh_phase(double mu) {
+  return 3.0 / (16.0 * kPi) * (1.0 + mu * mu);
+}
 
 // Cornette & Shanks (1992) eq. 4: p_CS(μ) = 3/(8π)·(1−g²)/(2+g²)·(1+μ²)/(1+g²−2gμ)^{3/2}.
 // Its mean cosine is not g (0.810 at g = 0.76, reference-notes §2.4). Valid for |g| < 1.

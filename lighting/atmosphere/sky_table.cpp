@@ -58,7 +58,9 @@ SkyTable::SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, Scattering
   });
 }
 
-const Vec3& SkyTable::sun_direction() const { return sun_dir_; }
+const Vec3& SkyTable::sun_direction() const {
+  return sun_dir_;
+}
 
 Spectrum SkyTable::radiance(const Vec3& view_dir) const {
   Spectrum s;

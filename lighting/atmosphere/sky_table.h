@@ -25,8 +25,8 @@ namespace skyband {
 class SkyTable {
  public:
   SkyTable(const Atmosphere& atmosphere, const Vec3& sun_dir, ScatteringOrders orders);
-  Spectrum radiance(const Vec3& view_dir) const;                         // interpolated
-  void radiance_into(const Vec3& view_dir, Spectrum& out) const;         // no allocation, hot path
+  Spectrum radiance(const Vec3& view_dir) const;                  // interpolated
+  void radiance_into(const Vec3& view_dir, Spectrum& out) const;  // no allocation, hot path
   const Vec3& sun_direction() const;
   // Diffuse (sky-only) spectral irradiance on an unobstructed horizontal plane, W·m⁻²·nm⁻¹:
   // E = ∫_{upper hemisphere} L(ω) cos θ dω, by Gauss–Legendre quadrature of the table

@@ -6,8 +6,7 @@
 
 namespace skyband {
 
-double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roughness_m, double fresnel,
-                        bool paper_scale) {
+double cook_torrance_fs(const Vec3& n, const Vec3& l, const Vec3& v, double roughness_m, double fresnel, bool paper_scale) {
   MicrofacetCosines c;
   if (!microfacet_cosines(n, l, v, c)) return 0.0;
   return fresnel * cook_torrance_lobe(c, roughness_m, paper_scale);

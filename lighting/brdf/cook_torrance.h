@@ -14,8 +14,8 @@
 // Fresnel-free, wavelength-independent part.
 #include "geometry/core/vec3.h"
 #include "lighting/brdf/beckmann.h"
-#include "lighting/integrals/fast_exp.h"
 #include "lighting/brdf/fresnel.h"
+#include "lighting/integrals/fast_exp.h"
 
 namespace skyband {
 
@@ -71,7 +71,7 @@ double cook_torrance_albedo(double roughness_m, double theta_v_rad, int nodes = 
 // Fresnel table (not owned; must outlive the lobe) and the scale convention.
 struct SpecularLobe {
   double roughness_m = 0.3;
-  double weight = 1.0;                  // s in R = s·R_s + d·R_d (Cook & Torrance 1982)
+  double weight = 1.0;                    // s in R = s·R_s + d·R_d (Cook & Torrance 1982)
   const FresnelTable* fresnel = nullptr;  // nullptr: F = 1 (white furnace)
   bool paper_scale = false;
 

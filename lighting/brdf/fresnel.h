@@ -75,8 +75,7 @@ class FresnelTable {
   static FresnelTable conductor(const Spectrum& n, const Spectrum& k) {
     FresnelTable t;
     for (int j = 0; j < kNodes; ++j)
-      for (int i = 0; i < kSpectrumSamples; ++i)
-        t.at(j, i) = fresnel_conductor(node_cos(j), std::complex<double>(n[i], k[i]));
+      for (int i = 0; i < kSpectrumSamples; ++i) t.at(j, i) = fresnel_conductor(node_cos(j), std::complex<double>(n[i], k[i]));
     return t;
   }
 
@@ -95,7 +94,9 @@ class FresnelTable {
     return s;
   }
   // The tabulated value at node j (cos θ = j/(kNodes − 1)) and wavelength sample i.
-  double node_value(int j, int i) const { return f_[static_cast<std::size_t>(j) * kSpectrumSamples + static_cast<std::size_t>(i)]; }
+  double node_value(int j, int i) const {
+    return f_[static_cast<std::size_t>(j) * kSpectrumSamples + static_cast<std::size_t>(i)];
+  }
 
  private:
   FresnelTable() : f_(static_cast<std::size_t>(kNodes) * kSpectrumSamples, 0.0) {}

@@ -28,7 +28,8 @@ FresnelFactors::FresnelFactors(const FresnelTable& table, double max_abs_error)
       max_error_ = err;
       for (int k = 0; k < r; ++k) {
         for (int i = 0; i < kSpectrumSamples; ++i) v_[static_cast<std::size_t>(k)][i] = V(i, k);
-        for (int j = 0; j < kRows; ++j) u_[static_cast<std::size_t>(j) * kMaxRank + static_cast<std::size_t>(k)] = sigma(k) * U(j, k);
+        for (int j = 0; j < kRows; ++j)
+          u_[static_cast<std::size_t>(j) * kMaxRank + static_cast<std::size_t>(k)] = sigma(k) * U(j, k);
       }
       return;
     }

@@ -39,27 +39,23 @@ Material make_dielectric(std::string name, std::string provenance, Spectrum rho,
 
 std::vector<Material> make_builtin() {
   std::vector<Material> all;
-  all.push_back(make_diffuse(
-      "diffuse-wall",
-      "[E] light grey-beige render, Lambertian only (seed Fig. 5a: 'no specular reflection'); "
-      "albedo 0.40-0.55 rising toward red, typical of light cement render.",
-      curve<3>({400, 550, 700}, {0.40, 0.50, 0.55})));
-  all.push_back(make_dielectric(
-      "painted-wall",
-      "[E] off-white exterior paint: TiO2 white absorbs below ~420 nm (0.30 at 380 nm to 0.80 "
-      "from 460 nm); reference-notes §4.3 ranges for paint: m 0.3-0.5, s 0.02-0.1, n 1.5.",
-      curve<4>({380, 420, 460, 780}, {0.30, 0.60, 0.80, 0.80}), 0.06, 0.4, 1.5));
-  all.push_back(make_dielectric(
-      "ceramic-tile",
-      "[E] brown glazed tile (seed Fig. 6 tiled building): dark reddish body 0.08-0.30; glaze "
-      "per reference-notes §4.3: m 0.05-0.15 (0.1 used), n 1.5; specular weight 0.25.",
-      curve<4>({400, 500, 600, 700}, {0.08, 0.10, 0.22, 0.30}), 0.25, 0.1, 1.5));
+  all.push_back(make_diffuse("diffuse-wall",
+                             "[E] light grey-beige render, Lambertian only (seed Fig. 5a: 'no specular reflection'); "
+                             "albedo 0.40-0.55 rising toward red, typical of light cement render.",
+                             curve<3>({400, 550, 700}, {0.40, 0.50, 0.55})));
+  all.push_back(make_dielectric("painted-wall",
+                                "[E] off-white exterior paint: TiO2 white absorbs below ~420 nm (0.30 at 380 nm to 0.80 "
+                                "from 460 nm); reference-notes §4.3 ranges for paint: m 0.3-0.5, s 0.02-0.1, n 1.5.",
+                                curve<4>({380, 420, 460, 780}, {0.30, 0.60, 0.80, 0.80}), 0.06, 0.4, 1.5));
+  all.push_back(make_dielectric("ceramic-tile",
+                                "[E] brown glazed tile (seed Fig. 6 tiled building): dark reddish body 0.08-0.30; glaze "
+                                "per reference-notes §4.3: m 0.05-0.15 (0.1 used), n 1.5; specular weight 0.25.",
+                                curve<4>({400, 500, 600, 700}, {0.08, 0.10, 0.22, 0.30}), 0.25, 0.1, 1.5));
   {
-    Material al = make_diffuse(
-        "aluminium-panel",
-        "[S] n, k of aluminium from pbrt-v4 (reference-notes §4.3); [E] mill finish m = 0.2 "
-        "(range 0.1-0.3), 10% diffusely scattering weathered layer of albedo 0.6.",
-        Spectrum::constant(0.6));
+    Material al = make_diffuse("aluminium-panel",
+                               "[S] n, k of aluminium from pbrt-v4 (reference-notes §4.3); [E] mill finish m = 0.2 "
+                               "(range 0.1-0.3), 10% diffusely scattering weathered layer of albedo 0.6.",
+                               Spectrum::constant(0.6));
     al.specular_weight = 0.9;
     al.roughness_m = 0.2;
     al.fresnel_kind = FresnelKind::kConductor;
@@ -68,30 +64,33 @@ std::vector<Material> make_builtin() {
     al.fresnel = FresnelTable::conductor(al.conductor_n, al.conductor_k);
     all.push_back(std::move(al));
   }
-  all.push_back(make_dielectric(
-      "window-glass",
-      "[E] soda-lime float glass n = 1.52 (reference-notes §4.3; BK7 is 1.519 at 542 nm), "
-      "near mirror m = 0.01; the interior seen through it is taken as black (no diffuse term).",
-      Spectrum::constant(0.0), 1.0, 0.01, 1.52));
-  all.push_back(make_dielectric(
-      "window-frame",
-      "[E] dark bronze anodised aluminium frame: lacquer/oxide film n = 1.6, m = 0.1, specular "
-      "weight 0.4, warm dark body 0.05-0.12.",
-      curve<3>({400, 550, 700}, {0.05, 0.08, 0.12}), 0.4, 0.1, 1.6));
-  all.push_back(make_diffuse(
-      "ground",
-      "[E] mix of asphalt and concrete paving, Lambertian, albedo 0.10-0.16 (typical urban "
-      "ground 0.1-0.2).",
-      curve<3>({400, 550, 700}, {0.10, 0.13, 0.16})));
+  all.push_back(make_dielectric("window-glass",
+                                "[E] soda-lime float glass n = 1.52 (reference-notes §4.3; BK7 is 1.519 at 542 nm), "
+                                "near mirror m = 0.01; the interior seen through it is taken as black (no diffuse term).",
+                                Spectrum::constant(0.0), 1.0, 0.01, 1.52));
+  all.push_back(make_dielectric("window-frame",
+                                "[E] dark bronze anodised aluminium frame: lacquer/oxide film n = 1.6, m = 0.1, specular "
+                                "weight 0.4, warm dark body 0.05-0.12.",
+                                curve<3>({400, 550, 700}, {0.05, 0.08, 0.12}), 0.4, 0.1, 1.6));
+  all.push_back(make_diffuse("ground",
+                             "[E] mix of asphalt and concrete paving, Lambertian, albedo 0.10-0.16 (typical urban "
+                             "ground 0.1-0.2).",
+                             curve<3>({400, 550, 700}, {0.10, 0.13, 0.16})));
   return all;
 }
 
 }  // namespace
 
-Spectrum aluminium_n() { return curve<8>(kAlNm, kAlN); }
-Spectrum aluminium_k() { return curve<8>(kAlNm, kAlK); }
+Spectrum aluminium_n() {
+  return curve<8>(kAlNm, kAlN);
+}
+Spectrum aluminium_k() {
+  return curve<8>(kAlNm, kAlK);
+}
 
-Spectrum Material::diffuse_brdf() const { return diffuse_albedo * ((1.0 - specular_weight) / kPi); }
+Spectrum Material::diffuse_brdf() const {
+  return diffuse_albedo * ((1.0 - specular_weight) / kPi);
+}
 
 Spectrum Material::brdf(const Vec3& n, const Vec3& l, const Vec3& v, bool paper_scale) const {
   MicrofacetCosines c;

@@ -25,13 +25,13 @@ enum class FresnelKind { kNone, kDielectric, kConductor };
 
 struct Material {
   std::string name;
-  std::string provenance;          // one sentence: where the numbers come from
-  Spectrum diffuse_albedo;         // ρ_d(λ), dimensionless
-  double specular_weight = 0.0;    // s ∈ [0, 1]; the diffuse weight is 1 − s
-  double roughness_m = 0.3;        // Beckmann RMS slope m
+  std::string provenance;        // one sentence: where the numbers come from
+  Spectrum diffuse_albedo;       // ρ_d(λ), dimensionless
+  double specular_weight = 0.0;  // s ∈ [0, 1]; the diffuse weight is 1 − s
+  double roughness_m = 0.3;      // Beckmann RMS slope m
   FresnelKind fresnel_kind = FresnelKind::kNone;
-  double dielectric_n = 1.5;       // real refractive index (kDielectric)
-  Spectrum conductor_n, conductor_k;  // complex index n + ik on the grid (kConductor)
+  double dielectric_n = 1.5;                   // real refractive index (kDielectric)
+  Spectrum conductor_n, conductor_k;           // complex index n + ik on the grid (kConductor)
   FresnelTable fresnel = FresnelTable::one();  // F(λ, cos θ) built from the above
 
   bool has_specular() const { return specular_weight > 0.0; }

@@ -6,8 +6,8 @@
 
 #include "geometry/visibility/sky_visibility.h"
 #include "lighting/integrals/daylight_coefficients.h"
-#include "lighting/sky/perez_sky.h"
 #include "lighting/integrals/visible_sky_integral.h"
+#include "lighting/sky/perez_sky.h"
 
 namespace skyband {
 
@@ -56,8 +56,8 @@ TriangleSoup mirrored_non_ground(const TriangleSoup& soup, const std::vector<std
 }  // namespace
 
 std::vector<std::string> default_ground_materials() {
-  return {"ground", "terrain", "road", "water", "forest", "grass", "landuse", "plantcover", "tinrelief", "relieffeature",
-          "waterbody", "transportation", "trafficarea", "transportsquare", "railway"};
+  return {"ground",    "terrain",       "road",      "water",          "forest",      "grass",           "landuse", "plantcover",
+          "tinrelief", "relieffeature", "waterbody", "transportation", "trafficarea", "transportsquare", "railway"};
 }
 
 namespace {
@@ -78,7 +78,8 @@ std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const V
     const WeatherHour& w = hours[h];
     if (!(w.dhi_W_m2 > 0)) continue;
     const double zenith = std::acos(std::clamp(w.sun_dir.z(), -1.0, 1.0));
-    const PerezSky sky = make_perez_sky(perez_sky_condition(w.dhi_W_m2, w.dni_W_m2, zenith, w.day_of_year), w.sun_dir, w.dhi_W_m2);
+    const PerezSky sky =
+        make_perez_sky(perez_sky_condition(w.dhi_W_m2, w.dni_W_m2, zenith, w.day_of_year), w.sun_dir, w.dhi_W_m2);
     double e = 0;
     for (std::size_t j = 0; j < nodes.size(); ++j) {
       l[j] = std::max(0.0, nodes[j].a * sky.radiance(nodes[j].da) + nodes[j].b * sky.radiance(nodes[j].db));
@@ -94,8 +95,7 @@ std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const V
 
 ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint> points, std::span<const WeatherHour> hours,
                                  const ClimateIrradiationOptions& options,
-                                 const std::function<void(std::size_t, std::size_t)>& progress,
-                                 const ClimateHourlySink& hourly) {
+                                 const std::function<void(std::size_t, std::size_t)>& progress, const ClimateHourlySink& hourly) {
   ClimateRun run;
   run.points.resize(points.size());
   // The period's sky, sun and ground sources.
@@ -145,53 +145,53 @@ ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint>
                        });
   // Hourly: the hours' skies at the daylight-coefficient nodes, once.
   const std::vector<float> node_skies = hourly ? hourly_node_skies(hours, options.visibility) : std::vector<float>{};
-  run.counts = for_each_visible_sky(
-      scene, points, options.visibility, options.method, options.threads, both(n), true,
-      [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
-        PointClimate& r = run.points[i];
-        r.svf = sky.factors.svf;
-        r.sky_exposure = sky.factors.sky_exposure;
-        r.method = sky.method;
-        if (cumulative.sky_hours > 0) {
-          thread_local std::vector<SkyFanTriangle> fan;
-          double e[2];
-          sky_channels(sky, tables, options.max_step_rad, fan, e);
-          const double* k = calibration[sky.exact() ? 0 : 1];
-          r.sky_Wh_m2 = e[0] * k[0];
-          r.sky_lxh = e[1] * k[1];
-        }
-        const QueryPoint& q = points[i];
-        for (const SunTerm& s : suns) {
-          const double c = q.normal.dot(s.dir);
-          if (c > 0 && worker.direction_visible(q, s.dir)) {
-            r.sun_hours += s.hours;
-            r.sun_Wh_m2 += s.Wh * c;
-            r.sun_lxh += s.lxh * c;
-          }
-        }
-        if (hourly) {
-          thread_local std::vector<float> dc, sky_h, sun_h, ground_h;
-          dc.resize(kDaylightCoefficientNodes);
-          daylight_coefficients(sky, options.visibility, dc);
-          sky_h.assign(hours.size(), 0.0f);
-          sun_h.assign(hours.size(), 0.0f);
-          ground_h.assign(hours.size(), 0.0f);
-          for (std::size_t h = 0; h < hours.size(); ++h) {
-            const WeatherHour& w = hours[h];
-            if (w.dhi_W_m2 > 0) {
-              const float* l = &node_skies[h * dc.size()];
-              double e = 0;
-              for (std::size_t j = 0; j < dc.size(); ++j) e += double(dc[j]) * double(l[j]);
-              sky_h[h] = static_cast<float>(e);
-            }
-            const double c = q.normal.dot(w.sun_dir);
-            if (w.sun_dir.z() > 0 && w.dni_W_m2 > 0 && c > 0 && worker.direction_visible(q, w.sun_dir))
-              sun_h[h] = static_cast<float>(w.dni_W_m2 * c);
-            ground_h[h] = static_cast<float>(w.albedo * w.ghi_W_m2 * r.ground_view);
-          }
-          hourly(i, sky_h, sun_h, ground_h);
-        }
-      });
+  run.counts =
+      for_each_visible_sky(scene, points, options.visibility, options.method, options.threads, both(n), true,
+                           [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
+                             PointClimate& r = run.points[i];
+                             r.svf = sky.factors.svf;
+                             r.sky_exposure = sky.factors.sky_exposure;
+                             r.method = sky.method;
+                             if (cumulative.sky_hours > 0) {
+                               thread_local std::vector<SkyFanTriangle> fan;
+                               double e[2];
+                               sky_channels(sky, tables, options.max_step_rad, fan, e);
+                               const double* k = calibration[sky.exact() ? 0 : 1];
+                               r.sky_Wh_m2 = e[0] * k[0];
+                               r.sky_lxh = e[1] * k[1];
+                             }
+                             const QueryPoint& q = points[i];
+                             for (const SunTerm& s : suns) {
+                               const double c = q.normal.dot(s.dir);
+                               if (c > 0 && worker.direction_visible(q, s.dir)) {
+                                 r.sun_hours += s.hours;
+                                 r.sun_Wh_m2 += s.Wh * c;
+                                 r.sun_lxh += s.lxh * c;
+                               }
+                             }
+                             if (hourly) {
+                               thread_local std::vector<float> dc, sky_h, sun_h, ground_h;
+                               dc.resize(kDaylightCoefficientNodes);
+                               daylight_coefficients(sky, options.visibility, dc);
+                               sky_h.assign(hours.size(), 0.0f);
+                               sun_h.assign(hours.size(), 0.0f);
+                               ground_h.assign(hours.size(), 0.0f);
+                               for (std::size_t h = 0; h < hours.size(); ++h) {
+                                 const WeatherHour& w = hours[h];
+                                 if (w.dhi_W_m2 > 0) {
+                                   const float* l = &node_skies[h * dc.size()];
+                                   double e = 0;
+                                   for (std::size_t j = 0; j < dc.size(); ++j) e += double(dc[j]) * double(l[j]);
+                                   sky_h[h] = static_cast<float>(e);
+                                 }
+                                 const double c = q.normal.dot(w.sun_dir);
+                                 if (w.sun_dir.z() > 0 && w.dni_W_m2 > 0 && c > 0 && worker.direction_visible(q, w.sun_dir))
+                                   sun_h[h] = static_cast<float>(w.dni_W_m2 * c);
+                                 ground_h[h] = static_cast<float>(w.albedo * w.ghi_W_m2 * r.ground_view);
+                               }
+                               hourly(i, sky_h, sun_h, ground_h);
+                             }
+                           });
 
   if (progress) progress(2 * n, 2 * n);
   return run;

@@ -55,7 +55,7 @@ struct ClimateIrradiationOptions {
 
 struct PointClimate {
   double svf = 0, sky_exposure = 0;
-  double ground_view = 0;   // G above
+  double ground_view = 0;  // G above
   double sky_Wh_m2 = 0, sun_Wh_m2 = 0, ground_Wh_m2 = 0;
   double sky_lxh = 0, sun_lxh = 0, ground_lxh = 0;
   double sun_hours = 0;
@@ -63,7 +63,7 @@ struct PointClimate {
 };
 
 struct ClimateRun {
-  std::vector<PointClimate> points;  // in input order
+  std::vector<PointClimate> points;    // in input order
   double sky_calibration[2] = {1, 1};  // factor applied to the sky quadrature per channel (exact methods)
   std::size_t ground_triangles = 0;    // triangles with a ground material
   std::size_t sky_intervals = 0;       // intervals with diffuse light

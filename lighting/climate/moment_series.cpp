@@ -18,8 +18,7 @@ date::year_month_day parse_day(const std::string& text, std::string_view flag) {
   unsigned m = 0, d = 0;
   char a = 0, b = 0;
   std::size_t used = 0;
-  if (std::sscanf(text.c_str(), "%d%c%u%c%u%zn", &y, &a, &m, &b, &d, &used) != 5 || a != '-' || b != '-' ||
-      used != text.size())
+  if (std::sscanf(text.c_str(), "%d%c%u%c%u%zn", &y, &a, &m, &b, &d, &used) != 5 || a != '-' || b != '-' || used != text.size())
     throw InputError(std::string(flag) + " '" + text + "': expected a date YYYY-MM-DD");
   const date::year_month_day ymd{date::year{y}, date::month{m}, date::day{d}};
   if (!ymd.ok() || y < -2000 || y > 6000)

@@ -18,9 +18,9 @@
 namespace skyband {
 
 struct MomentSeriesSpec {
-  std::string first_date, last_date;   // YYYY-MM-DD, inclusive; last ≥ first
-  double step_minutes = 10;            // (0, 1440], dividing nothing in particular
-  std::string zone;                    // IANA name, or empty for utc_offset_hours
+  std::string first_date, last_date;  // YYYY-MM-DD, inclusive; last ≥ first
+  double step_minutes = 10;           // (0, 1440], dividing nothing in particular
+  std::string zone;                   // IANA name, or empty for utc_offset_hours
   std::optional<double> utc_offset_hours;
 };
 

@@ -2,12 +2,13 @@
 // A weather series (weather_series.h) made ready for lighting: per interval the sun at its middle
 // or at a chosen fraction of it (NREL SPA, sun_position.h, in the file's local standard time), the mean irradiances, the
 // illuminances (the file's where it has all three, else the Perez 1990 luminous efficacy model,
-// perez_efficacy.h, with the precipitable water from the dew point) and the ground albedo (--albedo, else the file's where valid, else 0.2).
+// perez_efficacy.h, with the precipitable water from the dew point) and the ground albedo (--albedo, else the file's where valid,
+// else 0.2).
 #include <optional>
 #include <vector>
 
-#include "lighting/sky/cumulative_sky.h"
 #include "lighting/climate/weather_series.h"
+#include "lighting/sky/cumulative_sky.h"
 
 namespace skyband {
 
@@ -24,9 +25,9 @@ struct WeatherHoursOptions {
 };
 
 struct WeatherHoursReport {
-  std::size_t illuminance_from_file = 0;   // intervals whose illuminances came from the file
-  std::size_t illuminance_modelled = 0;    // … from the Perez 1990 efficacy model
-  std::size_t albedo_from_file = 0;        // intervals with the file's albedo
+  std::size_t illuminance_from_file = 0;  // intervals whose illuminances came from the file
+  std::size_t illuminance_modelled = 0;   // … from the Perez 1990 efficacy model
+  std::size_t albedo_from_file = 0;       // intervals with the file's albedo
 };
 
 // Throws InputError naming the option for an albedo or a sun fraction outside [0, 1], and (via

@@ -46,9 +46,9 @@ struct WeatherRecord {
   int day = 1;    // 1..31
   int hour = 1;   // 1..24, hour-ending: covers (hour − interval_hours, hour]
   double interval_hours = 1;
-  double ghi_Wh_m2 = 0;  // global horizontal
-  double dni_Wh_m2 = 0;  // direct normal
-  double dhi_Wh_m2 = 0;  // diffuse horizontal
+  double ghi_Wh_m2 = 0;                           // global horizontal
+  double dni_Wh_m2 = 0;                           // direct normal
+  double dhi_Wh_m2 = 0;                           // diffuse horizontal
   std::optional<double> global_illuminance_lux;   // horizontal
   std::optional<double> direct_illuminance_lux;   // normal to the sun
   std::optional<double> diffuse_illuminance_lux;  // horizontal

@@ -92,8 +92,8 @@ std::optional<std::string> weather_timing_warning(const WeatherSeries& series, c
   char numbers[256];
   std::snprintf(numbers, sizeof numbers,
                 "%.0f min %s than the sun (GHI-weighted mean hour %.2f against %.2f for the sun, over %d days)",
-                std::abs(timing.offset_min), earlier ? "earlier" : "later", timing.radiation_mean_hour,
-                timing.sun_mean_hour, timing.days_used);
+                std::abs(timing.offset_min), earlier ? "earlier" : "later", timing.radiation_mean_hour, timing.sun_mean_hour,
+                timing.days_used);
   // Radiation earlier than the sun: each value happened later than the time it is placed at —
   // the data's clock is behind the header's zone (data in a zone further west, e.g. UTC), each
   // value is labelled by the start of its hour, or (half an hour) each value is an

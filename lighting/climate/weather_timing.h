@@ -36,11 +36,11 @@ struct WeatherTimingOptions {
 };
 
 struct WeatherTiming {
-  double offset_min = 0;            // radiation − sun (minutes), GHI-weighted mean over the days used
-  double radiation_mean_hour = 0;   // Σ_d GHI(d)·c_rad(d) / Σ_d GHI(d) = the GHI-weighted mean hour
-  double sun_mean_hour = 0;         // Σ_d GHI(d)·c_sun(d) / Σ_d GHI(d)
-  int days_used = 0;                // days that passed the filters
-  int days_total = 0;               // whole days in the series
+  double offset_min = 0;           // radiation − sun (minutes), GHI-weighted mean over the days used
+  double radiation_mean_hour = 0;  // Σ_d GHI(d)·c_rad(d) / Σ_d GHI(d) = the GHI-weighted mean hour
+  double sun_mean_hour = 0;        // Σ_d GHI(d)·c_sun(d) / Σ_d GHI(d)
+  int days_used = 0;               // days that passed the filters
+  int days_total = 0;              // whole days in the series
 };
 
 // Throws InputError if a record's date is outside the SPA's domain (years −2000…6000). A series

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/core/gauss_legendre.h"
 #include "geometry/bands/sample_lines.h"
 #include "geometry/bands/sky_integral.h"
 #include "geometry/bands/visibility_cache.h"
+#include "geometry/core/gauss_legendre.h"
 #include "lighting/sky/sky_radiance_grid.h"
 
 namespace skyband {
@@ -14,7 +14,6 @@ namespace skyband {
 namespace {
 
 constexpr int kCells = kDaylightCoefficientCells, kNodes1 = kCells + 1;
-
 
 // Σ over the point's lines of w_b ∫ φ_j sin²α dα, scattered into the nodes' coefficients.
 void scatter_lines(const PointVisibilityView& v, std::span<float> out) {

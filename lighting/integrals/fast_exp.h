@@ -14,7 +14,7 @@
 namespace skyband {
 
 namespace fast_exp_detail {
-inline constexpr int kSteps = 64;               // table steps per unit of x
+inline constexpr int kSteps = 64;                 // table steps per unit of x
 inline constexpr int kEntries = 64 * kSteps + 1;  // x ∈ [0, 64]
 inline const std::array<double, kEntries>& table() {
   static const std::array<double, kEntries> t = [] {

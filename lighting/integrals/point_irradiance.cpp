@@ -7,14 +7,14 @@
 #include <memory>
 #include <optional>
 
-#include "geometry/core/input_error.h"
-#include "geometry/visibility/sky_visibility.h"
-#include "geometry/exact/sky_fan.h"
 #include "geometry/bands/sky_integral.h"
-#include "lighting/spectrum/colour.h"
+#include "geometry/core/input_error.h"
+#include "geometry/exact/sky_fan.h"
+#include "geometry/visibility/sky_visibility.h"
 #include "lighting/integrals/sky_column_table.h"
-#include "lighting/sky/sky_radiance_grid.h"
 #include "lighting/integrals/visible_sky_integral.h"
+#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
 
 namespace skyband {
 
@@ -58,8 +58,8 @@ std::vector<Result> for_each_point(const Scene& scene, std::span<const QueryPoin
 
 }  // namespace
 
-std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points,
-                                                      const SkyModel& sky, const PointIrradianceOptions& options,
+std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points, const SkyModel& sky,
+                                                      const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress) {
   check_step(options.max_step_rad);
   const ProjectedSkyGrid projected = project_sky(sky, options.threads);
@@ -70,7 +70,8 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
 
   const OpenSky open(grid, options.visibility, options.max_step_rad);
   return for_each_point<PointIrradiance>(
-      scene, points, options, progress, [&](const VisibleSky& sky_seen, const QueryPoint& q, SkyVisibility& worker, PointIrradiance& r) {
+      scene, points, options, progress,
+      [&](const VisibleSky& sky_seen, const QueryPoint& q, SkyVisibility& worker, PointIrradiance& r) {
         thread_local std::vector<SkyFanTriangle> fan;
         double e[2];
         sky_channels(sky_seen, grid, options.max_step_rad, fan, e);
@@ -90,8 +91,7 @@ std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::s
 
 std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std::span<const QueryPoint> points,
                                                         const AtmosphereParams& atmosphere, const SkyModelSpec& spec,
-                                                        std::span<const SunMoment> moments,
-                                                        const PointIrradianceOptions& options,
+                                                        std::span<const SunMoment> moments, const PointIrradianceOptions& options,
                                                         const std::function<void(std::size_t, std::size_t)>& progress,
                                                         const std::function<void(std::size_t, std::size_t)>& sky_progress) {
   check_step(options.max_step_rad);
@@ -137,8 +137,7 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
 }
 
 std::vector<PointIrradiation> compute_point_sun_hours(const Scene& scene, std::span<const QueryPoint> points,
-                                                      std::span<const SunMoment> moments,
-                                                      const PointIrradianceOptions& options,
+                                                      std::span<const SunMoment> moments, const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress) {
   std::vector<SunMoment> up;
   for (std::size_t t = 0; t < moments.size(); ++t) {
@@ -149,8 +148,7 @@ std::vector<PointIrradiation> compute_point_sun_hours(const Scene& scene, std::s
     if (m.sun_dir.z() > 0 && m.hours > 0) up.push_back({m.sun_dir.normalized(), m.hours});
   }
   return for_each_point<PointIrradiation>(
-      scene, points, options, progress,
-      [&](const VisibleSky&, const QueryPoint& q, SkyVisibility& worker, PointIrradiation& r) {
+      scene, points, options, progress, [&](const VisibleSky&, const QueryPoint& q, SkyVisibility& worker, PointIrradiation& r) {
         for (const SunMoment& m : up)
           if (q.normal.dot(m.sun_dir) > 0 && worker.direction_visible(q, m.sun_dir)) r.sun_hours += m.hours;
       });

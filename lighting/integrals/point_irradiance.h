@@ -67,13 +67,13 @@ struct PointIrradianceOptions {
 
 // Irradiance at every point under one sky and sun. Memory O(points): the visibility cache is
 // consumed chunk by chunk (for_each_visibility_chunk). `progress(done, total)` from one thread.
-std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points,
-                                                      const SkyModel& sky, const PointIrradianceOptions& options,
+std::vector<PointIrradiance> compute_point_irradiance(const Scene& scene, std::span<const QueryPoint> points, const SkyModel& sky,
+                                                      const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 // A sun position and the hours it stands for (e.g. 0.5 for half-hourly steps).
 struct SunMoment {
-  Vec3 sun_dir;       // unit, world frame (the sky model's sun; may be below the horizon)
+  Vec3 sun_dir;        // unit, world frame (the sky model's sun; may be below the horizon)
   double hours = 1.0;  // ≥ 0
 };
 
@@ -85,11 +85,11 @@ struct SunMoment {
 struct PointIrradiation {
   double svf = 0;
   double sky_exposure = 0;
-  double sun_hours = 0;   // Σ hours_t over the moments whose sun is visible (see sun_visible)
-  double sky_Wh_m2 = 0;   // diffuse sky irradiation, W·h·m⁻² (380–780 nm)
-  double sun_Wh_m2 = 0;   // direct sun irradiation, W·h·m⁻² (380–780 nm)
-  double sky_lxh = 0;     // diffuse sky light exposure, lx·h
-  double sun_lxh = 0;     // direct sun light exposure, lx·h
+  double sun_hours = 0;                       // Σ hours_t over the moments whose sun is visible (see sun_visible)
+  double sky_Wh_m2 = 0;                       // diffuse sky irradiation, W·h·m⁻² (380–780 nm)
+  double sun_Wh_m2 = 0;                       // direct sun irradiation, W·h·m⁻² (380–780 nm)
+  double sky_lxh = 0;                         // diffuse sky light exposure, lx·h
+  double sun_lxh = 0;                         // direct sun light exposure, lx·h
   SkyMethod method = SkyMethod::exact_union;  // how the visible sky was computed
 };
 
@@ -98,8 +98,7 @@ struct PointIrradiation {
 // total)` after each moment's sky, then `progress(done, total)` over the points.
 std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std::span<const QueryPoint> points,
                                                         const AtmosphereParams& atmosphere, const SkyModelSpec& spec,
-                                                        std::span<const SunMoment> moments,
-                                                        const PointIrradianceOptions& options,
+                                                        std::span<const SunMoment> moments, const PointIrradianceOptions& options,
                                                         const std::function<void(std::size_t, std::size_t)>& progress = {},
                                                         const std::function<void(std::size_t, std::size_t)>& sky_progress = {});
 
@@ -107,8 +106,7 @@ std::vector<PointIrradiation> compute_point_irradiation(const Scene& scene, std:
 // sky_exposure, sun_hours and method of each point; the irradiation fields stay 0. A moment
 // counts where its sun is above the horizon, in front of the face and not hidden.
 std::vector<PointIrradiation> compute_point_sun_hours(const Scene& scene, std::span<const QueryPoint> points,
-                                                      std::span<const SunMoment> moments,
-                                                      const PointIrradianceOptions& options,
+                                                      std::span<const SunMoment> moments, const PointIrradianceOptions& options,
                                                       const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace skyband

@@ -13,8 +13,8 @@ namespace {
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kNodes = SkyColumnTable::kElevationCells + 1;
-constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;  // radians
-constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;   // radians
+constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;    // radians
+constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;     // radians
 constexpr double x2[2] = {-0.5773502691896258, 0.5773502691896258};  // ±1/√3, weights 1
 }  // namespace
 

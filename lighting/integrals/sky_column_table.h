@@ -22,7 +22,7 @@ namespace skyband {
 
 class SkyColumnTable {
  public:
-  static constexpr int kAzimuthCells = 1440;  // 0.25°
+  static constexpr int kAzimuthCells = 1440;   // 0.25°
   static constexpr int kElevationCells = 360;  // 0.25°, horizon to zenith
   static constexpr int kChannels = 2;
 

@@ -5,14 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/bands/sky_integral.h"
 #include "geometry/core/gauss_legendre.h"
 #include "geometry/core/input_error.h"
-#include "geometry/bands/sky_integral.h"
 
 namespace skyband {
 
-SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky,
-               int alpha_cells)
+SkyLut::SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky, int alpha_cells)
     : lines_(line_deltas_rad.size()), cells_(alpha_cells), deltas_(line_deltas_rad.begin(), line_deltas_rad.end()) {
   if (alpha_cells < 1) throw InputError("sky look-up table: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
   step_rad_ = kPi / cells_;
@@ -124,15 +123,17 @@ Spectrum diffuse_sky_irradiance(const PointVisibilityView& v, const SkyLut& lut)
   return e;
 }
 
-SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum,
-                         std::vector<std::vector<Spectrum>> projections, bool keep_spectral)
+SkyLutCache::SkyLutCache(SkyRadianceFn sky, int alpha_cells, double frame_quantum, std::vector<std::vector<Spectrum>> projections,
+                         bool keep_spectral)
     : sky_(std::move(sky)),
       alpha_cells_(alpha_cells),
       quantum_(frame_quantum),
       projections_(std::move(projections)),
       keep_spectral_(keep_spectral) {
-  if (!(frame_quantum > 0)) throw InputError("sky look-up table cache: frame quantum must be > 0, got " + std::to_string(frame_quantum));
-  if (alpha_cells < 1) throw InputError("sky look-up table cache: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
+  if (!(frame_quantum > 0))
+    throw InputError("sky look-up table cache: frame quantum must be > 0, got " + std::to_string(frame_quantum));
+  if (alpha_cells < 1)
+    throw InputError("sky look-up table cache: alpha cell count must be ≥ 1, got " + std::to_string(alpha_cells));
 }
 
 std::shared_ptr<const SkyLut> SkyLutCache::lut_for(const PointVisibilityView& v) {

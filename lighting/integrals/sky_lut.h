@@ -36,8 +36,7 @@ using SkyRadianceFn = std::function<void(const Vec3& world_dir, Spectrum& radian
 class SkyLut {
  public:
   // Tables for the sample planes `line_deltas_rad` of `frame`, `alpha_cells` equal α cells.
-  SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky,
-         int alpha_cells = 360);
+  SkyLut(const BandFrame& frame, std::span<const double> line_deltas_rad, const SkyRadianceFn& sky, int alpha_cells = 360);
 
   std::size_t line_count() const { return lines_; }
   int alpha_cells() const { return cells_; }
@@ -72,8 +71,7 @@ class SkyLut {
   }
   // acc[i] += weight·(E_l(α1) − E_l(α0))[i], i < nc == channels(): the one body of both
   // add_interval forms (inlined with a constant nc, the channel loop unrolls).
-  void accumulate(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc,
-                  std::size_t nc) const {
+  void accumulate(std::size_t line, double alpha0_rad, double alpha1_rad, double weight, double* acc, std::size_t nc) const {
     if (alpha0_rad <= 0.0 && alpha1_rad >= kPi) {  // the whole line (locate clamps to [0, π] alike)
       const double* w = &whole_[line * nc];
       for (std::size_t i = 0; i < nc; ++i) acc[i] += weight * w[i];
@@ -87,8 +85,7 @@ class SkyLut {
     const double* b0 = a0 + nc;
     const double* a1 = &table_[(line * static_cast<std::size_t>(cells_ + 1) + static_cast<std::size_t>(j1)) * nc];
     const double* b1 = a1 + nc;
-    for (std::size_t i = 0; i < nc; ++i)
-      acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
+    for (std::size_t i = 0; i < nc; ++i) acc[i] += weight * ((a1[i] + t1 * (b1[i] - a1[i])) - (a0[i] + t0 * (b0[i] - a0[i])));
   }
   void locate(double alpha_rad, int& node, double& t) const {
     const double x = std::clamp(alpha_rad, 0.0, kPi) * inv_step_;  // a product: ~10⁸ per image

@@ -96,8 +96,10 @@ std::size_t band_of_s(const PointVisibilityView& v, double s) {
   std::size_t lo = 0, hi = v.band_count();  // first band with s1 ≥ s
   while (lo < hi) {
     const std::size_t mid = (lo + hi) / 2;
-    if (double(v.band(mid).s1) < s) lo = mid + 1;
-    else hi = mid;
+    if (double(v.band(mid).s1) < s)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   return std::min(lo, v.band_count() - 1);
 }
@@ -240,7 +242,7 @@ LobeWindowSky lobe_window_sky(const PointVisibilityView& view, const Vec3& view_
   const double d0 = delta_q - half, d1 = delta_q + half;
   if (d1 <= f.delta_min_rad || d0 >= f.delta_max_rad) return LobeWindowSky::kClosed;  // no sky in the cap
   if (d0 < f.delta_min_rad || d1 > f.delta_max_rad) return LobeWindowSky::kMixed;     // horizon or face plane
-  const double a0 = alpha_q - r, a1 = alpha_q + r;  // inside (0, π): sin α_Q > sin R
+  const double a0 = alpha_q - r, a1 = alpha_q + r;                                    // inside (0, π): sin α_Q > sin R
   const std::size_t b0 = band_of_s(view, std::sin(d0 - f.beta_rad)), b1 = band_of_s(view, std::sin(d1 - f.beta_rad));
   bool open = true, closed = true;
   for (std::size_t b = b0; b <= b1; ++b) {

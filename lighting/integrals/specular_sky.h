@@ -35,13 +35,12 @@
 //     identical visible intervals within the lobe window (open sky, typically) form one
 //     *segment* over which the lobe is smooth. The window is α ∈ [α_Q − R, α_Q + R] with
 //     R = lobe_window_per_m·m: it holds the whole cap of directions within R of Q (see the
-//     code), and lines are integrated only inside it, so merging is exact for what is integrated. A segment at most c₁·m wide in δ (single_line_per_m) is one line (a single band:
-//     its own sample plane and weight w_b, seed eq. 7; the midpoint rule's error (h/σ)²/24 is
-//     ≤ 10⁻³); a wider one is split into pieces of equal δ width ≤ c_δ·m (or max_delta_step_rad)
-//     with three Gauss–Legendre lines each (weights (h/2)·w_k·cos(δ − β)), the rule used along α,
-//     or two when the pieces are at most ⅔ of that width.
-//     Merging matters: equal-weight bands crowd around the normal (a wall has 64 bands in
-//     90° of δ, the first ones 0.9° wide), so band by band a lobe of m = 0.1 meets ~50 bands.
+//     code), and lines are integrated only inside it, so merging is exact for what is integrated. A segment at most c₁·m wide in
+//     δ (single_line_per_m) is one line (a single band: its own sample plane and weight w_b, seed eq. 7; the midpoint rule's
+//     error (h/σ)²/24 is ≤ 10⁻³); a wider one is split into pieces of equal δ width ≤ c_δ·m (or max_delta_step_rad) with three
+//     Gauss–Legendre lines each (weights (h/2)·w_k·cos(δ − β)), the rule used along α, or two when the pieces are at most ⅔ of
+//     that width. Merging matters: equal-weight bands crowd around the normal (a wall has 64 bands in 90° of δ, the first ones
+//     0.9° wide), so band by band a lobe of m = 0.1 meets ~50 bands.
 //  5. m below mirror_below_m: a perfect mirror, I = w_s F(N·V) L(Q) if Q is visible (the band
 //     containing Q's δ, visible at α_Q), else 0.
 //
@@ -66,8 +65,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <span>
 #include <limits>
+#include <span>
 #include <type_traits>
 
 #include "geometry/bands/band_frame.h"
@@ -84,16 +83,16 @@
 namespace skyband {
 
 struct SpecularSkyOptions {
-  double epsilon = 1e-3;             // truncation threshold, relative to G_max (seed's ε)
-  double alpha_step_per_m = 2.0;     // α cells ≤ alpha_step_per_m · m ...
-  double max_alpha_step_rad = 0.1;   // ... and ≤ this (sky variation under wide lobes)
-  double delta_step_per_m = 2.0;     // δ pieces ≤ delta_step_per_m · m ...
-  double max_delta_step_rad = 0.2;   // ... and ≤ this
-  double single_line_per_m = 0.5;    // a band ≤ this · m wide in δ is one line (seed eq. 7)
-  double min_compression = 0.02;     // floor of N·V in the lobe's width across the plane of incidence
-  int stop_after = 2;                // consecutive cells (lines) below ε that end a march (sweep)
-  double lobe_window_per_m = 7.0;    // lines are integrated only within this · m of Q in α: step 4
-  double mirror_below_m = 0.005;     // m below this: perfect mirror (single look-up)
+  double epsilon = 1e-3;            // truncation threshold, relative to G_max (seed's ε)
+  double alpha_step_per_m = 2.0;    // α cells ≤ alpha_step_per_m · m ...
+  double max_alpha_step_rad = 0.1;  // ... and ≤ this (sky variation under wide lobes)
+  double delta_step_per_m = 2.0;    // δ pieces ≤ delta_step_per_m · m ...
+  double max_delta_step_rad = 0.2;  // ... and ≤ this
+  double single_line_per_m = 0.5;   // a band ≤ this · m wide in δ is one line (seed eq. 7)
+  double min_compression = 0.02;    // floor of N·V in the lobe's width across the plane of incidence
+  int stop_after = 2;               // consecutive cells (lines) below ε that end a march (sweep)
+  double lobe_window_per_m = 7.0;   // lines are integrated only within this · m of Q in α: step 4
+  double mirror_below_m = 0.005;    // m below this: perfect mirror (single look-up)
 };
 
 struct SpecularSkyStats {
@@ -106,8 +105,8 @@ namespace specular_detail {
 // The constants of the lobe factor k(ω) = w_s·D_n(N·H)·G/(4(N·L)(N·V)) (×4 with paper_scale;
 // cook_torrance.h, beckmann.h) at one point: everything that does not depend on ω.
 struct LobeConstants {
-  double inv_m2 = 0;     // 1/m²
-  double scale = 0;      // w_s·(paper_scale ? 4 : 1)/(4·π·m²·(N·V)): D_n's 1/(π m²), f_s's 1/(4 N·V)
+  double inv_m2 = 0;  // 1/m²
+  double scale = 0;   // w_s·(paper_scale ? 4 : 1)/(4·π·m²·(N·V)): D_n's 1/(π m²), f_s's 1/(4 N·V)
   double n_dot_v = 0;
 };
 LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v);
@@ -124,8 +123,7 @@ LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v);
 // factor). 0 where the BRDF is 0 (L or V at or below the surface, L = −V, N·H ≤ 0);
 // *exponent = x where N·H > 0 (else untouched); *v_dot_h = V·H. (specular_sky_test checks it
 // against cook_torrance_lobe.)
-inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l, double& v_dot_h,
-                          double* exponent = nullptr) {
+inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l, double& v_dot_h, double* exponent = nullptr) {
   if (!(n_dot_l > 0.0)) return 0.0;
   const double a = 1.0 + v_dot_l;
   const double b = n_dot_l + k.n_dot_v;
@@ -150,8 +148,8 @@ inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l
 // compiled for AVX2 + FMA (ColourSpecularSky's dispatched build); specular_sky_colour_test
 // compares that build with the portable one.
 __attribute__((target("avx2,fma"))) inline void lobe_factor3_avx2(const LobeConstants& lk, const double (&n_dot_l)[3],
-                                                                   const double (&v_dot_l)[3], const double (&sin_a)[3],
-                                                                   double (&k)[3], double (&v_dot_h)[3], double (&x)[3]) {
+                                                                  const double (&v_dot_l)[3], const double (&sin_a)[3],
+                                                                  double (&k)[3], double (&v_dot_h)[3], double (&x)[3]) {
   using namespace fast_exp_detail;
   const __m256d nl = _mm256_setr_pd(n_dot_l[0], n_dot_l[1], n_dot_l[2], n_dot_l[2]);
   const __m256d vl = _mm256_setr_pd(v_dot_l[0], v_dot_l[1], v_dot_l[2], v_dot_l[2]);
@@ -168,9 +166,9 @@ __attribute__((target("avx2,fma"))) inline void lobe_factor3_avx2(const LobeCons
   const __m256d r = _mm256_div_pd(one, _mm256_mul_pd(_mm256_mul_pd(b2, as), nls));
   const __m256d inv_c2 = _mm256_mul_pd(_mm256_mul_pd(two, as), _mm256_mul_pd(_mm256_mul_pd(r, as), nls));
   const __m256d xv = _mm256_mul_pd(_mm256_max_pd(_mm256_sub_pd(inv_c2, one), zero), _mm256_set1_pd(lk.inv_m2));
-  const __m256d gnl = _mm256_mul_pd(
-      _mm256_min_pd(as, _mm256_mul_pd(_mm256_mul_pd(two, bs), _mm256_min_pd(_mm256_set1_pd(lk.n_dot_v), nls))),
-      _mm256_mul_pd(r, b2));
+  const __m256d gnl =
+      _mm256_mul_pd(_mm256_min_pd(as, _mm256_mul_pd(_mm256_mul_pd(two, bs), _mm256_min_pd(_mm256_set1_pd(lk.n_dot_v), nls))),
+                    _mm256_mul_pd(r, b2));
   // exp_neg: e^{−j/64} from the table times the degree-4 Taylor polynomial of e^{−f}.
   const __m256d in_range = _mm256_cmp_pd(xv, _mm256_set1_pd(static_cast<double>(kEntries - 1) / kSteps), _CMP_LT_OQ);
   const __m256d xs = _mm256_blendv_pd(zero, xv, in_range);
@@ -213,8 +211,10 @@ __attribute__((target("avx2,fma"))) inline void lobe_factor3_avx2(const LobeCons
 // only in code compiled for AVX2 + FMA).
 template <class P>
 constexpr bool wants_avx2_lobe() {
-  if constexpr (requires { P::kAvx2; }) return P::kAvx2 && SKYBAND_LOBE_AVX2;
-  else return false;
+  if constexpr (requires { P::kAvx2; })
+    return P::kAvx2 && SKYBAND_LOBE_AVX2;
+  else
+    return false;
 }
 
 // One sample line: plane δ, its weight (the s-measure it represents) and the cached band whose
@@ -232,10 +232,10 @@ struct PointContext {
   const PointVisibilityView* view = nullptr;
   Vec3 n, v, q;  // normal, unit view direction, mirror direction
   double n_dot_v = 0;
-  double n_dot_x = 0, v_dot_x = 0;  // N·x, V·x for the frame's axis x (N·x = 0: x lies in the face)
-  LobeConstants lobe_k;              // the lobe's per-point constants (lobe_factor)
+  double n_dot_x = 0, v_dot_x = 0;      // N·x, V·x for the frame's axis x (N·x = 0: x lies in the face)
+  LobeConstants lobe_k;                 // the lobe's per-point constants (lobe_factor)
   double alpha_lo = 0, alpha_hi = kPi;  // the lobe window in α (step 4)
-  int stop_after = 2;                    // consecutive cells/lines below ε before stopping
+  int stop_after = 2;                   // consecutive cells/lines below ε before stopping
   SpecularLobe lobe;
 };
 
@@ -319,8 +319,8 @@ inline void raise(Level& l, const Level& o) {
 // (and the Beckmann exponent into *exponent when given).
 // The line must carry its dot products (with_dots). ω = cos α·x + sin α·u is unit (x ⟂ u).
 template <class Policy>
-double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p,
-                    typename Policy::Value& out, SpecularSkyStats& stats, double* exponent = nullptr) {
+double integrand_cs(const PointContext& c, const Line& line, double cos_a, double sin_a, Policy& p, typename Policy::Value& out,
+                    SpecularSkyStats& stats, double* exponent = nullptr) {
   const double n_dot_w = cos_a * c.n_dot_x + sin_a * line.n_dot_u;
   const double v_dot_w = cos_a * c.v_dot_x + sin_a * line.v_dot_u;
   double v_dot_h = 0;
@@ -339,8 +339,8 @@ double integrand_cs(const PointContext& c, const Line& line, double cos_a, doubl
 // side by side first (independent dependency chains the processor overlaps) and the sky looked
 // up only where the factor is positive.
 template <class Policy>
-void integrate_nodes3(const PointContext& c, const Line& line, const double (&cos_a)[3], const double (&sin_a)[3],
-                      double half, Policy& p, typename Policy::Value& scratch, typename Policy::Value& cell, Level& level,
+void integrate_nodes3(const PointContext& c, const Line& line, const double (&cos_a)[3], const double (&sin_a)[3], double half,
+                      Policy& p, typename Policy::Value& scratch, typename Policy::Value& cell, Level& level,
                       SpecularSkyStats& stats) {
   double k[3], v_dot_h[3], n_dot_w[3], v_dot_w[3];
   Level l[3];
@@ -358,11 +358,10 @@ void integrate_nodes3(const PointContext& c, const Line& line, const double (&co
     for (int n = 0; n < 3; ++n) l[n].x = x[n];
 #endif
   } else {
-    for (int n = 0; n < 3; ++n)
-      k[n] = lobe_factor(c.lobe_k, n_dot_w[n], v_dot_w[n], v_dot_h[n], &l[n].x) * sin_a[n] * sin_a[n];
+    for (int n = 0; n < 3; ++n) k[n] = lobe_factor(c.lobe_k, n_dot_w[n], v_dot_w[n], v_dot_h[n], &l[n].x) * sin_a[n] * sin_a[n];
   }
   const BandFrame& f = c.view->frame();
-  if constexpr (kAvx2 && requires(typename Policy::Value (&o)[3], double (&g)[3]) {
+  if constexpr (kAvx2 && requires(typename Policy::Value(&o)[3], double(&g)[3]) {
                   p.eval3(cos_a, sin_a, f.x, line.u, v_dot_h, k, o, g);
                 }) {
     typename Policy::Value out[3];
@@ -413,9 +412,9 @@ Level level_at(const PointContext& c, const Line& line, double alpha, Policy& p,
 // March from α* toward one end (dir = +1: to π, −1: to 0) over the visible parts of `line`;
 // adds ∫ to `acc` (unweighted) and updates g_max / line_max. g_start: G at α*.
 template <class Policy>
-void march(const PointContext& c, const Line& line, double alpha_star, double cos_star, double sin_star,
-           const Level& start, int dir, const AlphaCells& cells, double eps, double total, double& g_max,
-           Level& line_max, typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats) {
+void march(const PointContext& c, const Line& line, double alpha_star, double cos_star, double sin_star, const Level& start,
+           int dir, const AlphaCells& cells, double eps, double total, double& g_max, Level& line_max,
+           typename Policy::Value& acc, Policy& p, SpecularSkyStats& stats) {
   const double step = cells.step;
   const std::span<const VisibleInterval> vis = c.view->visible(line.band);
   const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(vis.size());
@@ -476,14 +475,16 @@ void march(const PointContext& c, const Line& line, double alpha_star, double co
         any = true;
       }
       // Move on only if the interval ends inside this cell (in the march direction).
-      if (dir > 0 ? i1 <= hi_cell : i0 >= lo_cell) idx += dir;
-      else break;
+      if (dir > 0 ? i1 <= hi_cell : i0 >= lo_cell)
+        idx += dir;
+      else
+        break;
     }
-    if (!any) {  // wholly occluded: G at the far end decides whether to go on
+    if (!any) {     // wholly occluded: G at the far end decides whether to go on
       if (whole) {  // cos, sin of b = mid + dir·step/2 by angle addition from the recurrence
         const double hs = dir * cells.sin_half;
-        cell_l.g = integrand_cs(c, line, full_cm * cells.cos_half - full_sm * hs, full_sm * cells.cos_half + full_cm * hs, p,
-                                f, stats, &cell_l.x);
+        cell_l.g = integrand_cs(c, line, full_cm * cells.cos_half - full_sm * hs, full_sm * cells.cos_half + full_cm * hs, p, f,
+                                stats, &cell_l.x);
       } else {
         cell_l = level_at(c, line, b, p, f, stats);
       }
@@ -496,8 +497,8 @@ void march(const PointContext& c, const Line& line, double alpha_star, double co
     // at most ε of what the point has gathered (at grazing views a low, wide tail under a sharp
     // peak passes the first two tests while still holding several % of the integral).
     const double mass = p.measure(cell) * line.weight;
-    const bool negligible = cell_l.g <= eps * g_max && !rising(cell_l, prev) &&
-                            mass <= eps * (total + p.measure(acc) * line.weight);
+    const bool negligible =
+        cell_l.g <= eps * g_max && !rising(cell_l, prev) && mass <= eps * (total + p.measure(acc) * line.weight);
     quiet = negligible ? quiet + 1 : 0;
     a = b;
     prev = cell_l;
@@ -541,8 +542,7 @@ Level integrate_line(const PointContext& c, const Line& plain_line, const AlphaC
 // when `acc` is the answer.
 template <class Policy>
 bool trivial_case(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Policy& p,
-                  const SpecularSkyOptions& opt, PointContext& c, SpecularSkyStats& stats,
-                  typename Policy::Value& acc) {
+                  const SpecularSkyOptions& opt, PointContext& c, SpecularSkyStats& stats, typename Policy::Value& acc) {
   if (view.band_count() == 0 || lobe.weight <= 0.0 || !make_context(view, view_dir, lobe, c)) return true;
   if (lobe.roughness_m < opt.mirror_below_m) {
     const BandFrame& f = view.frame();
@@ -559,9 +559,8 @@ bool trivial_case(const PointVisibilityView& view, const Vec3& view_dir, const S
 
 // The ε-truncated partial-sky integral over any reflection policy (see the top of this file).
 template <class Policy>
-typename Policy::Value specular_sky_integral(const PointVisibilityView& view, const Vec3& view_dir,
-                                             const SpecularLobe& lobe, Policy& p, const SpecularSkyOptions& opt,
-                                             SpecularSkyStats& stats) {
+typename Policy::Value specular_sky_integral(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
+                                             Policy& p, const SpecularSkyOptions& opt, SpecularSkyStats& stats) {
   typename Policy::Value acc;
   PointContext c;
   if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) return acc;
@@ -658,8 +657,8 @@ LobeWindowSky lobe_window_sky(const PointVisibilityView& view, const Vec3& view_
 // The ε-truncated partial-sky integral (seed §3), spectral. `view_dir` points from the surface
 // toward the eye (any length).
 template <class Radiance>
-Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-                               Radiance&& sky, const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
+Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Radiance&& sky,
+                               const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
   SpecularSkyStats stats;
   SpectralReflection<std::remove_reference_t<Radiance>> p{sky, lobe.fresnel};
   const Spectrum r = specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats);
@@ -671,9 +670,9 @@ Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view
 // Pieces in δ and α are ≤ min(step_per_m·m, max_step_rad); 3-point GL in δ (weight cos(δ − β)),
 // 4-point GL along α. Perfect mirrors (m < opt.mirror_below_m) use the same look-up as above.
 template <class Radiance>
-Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe,
-                                Radiance&& sky, double step_per_m = 0.5, double max_step_rad = 0.02,
-                                const SpecularSkyOptions& opt = {}, SpecularSkyStats* stats_out = nullptr) {
+Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Radiance&& sky,
+                                double step_per_m = 0.5, double max_step_rad = 0.02, const SpecularSkyOptions& opt = {},
+                                SpecularSkyStats* stats_out = nullptr) {
   using namespace specular_detail;
   static constexpr double x4[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
   static constexpr double w4[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};

@@ -8,8 +8,8 @@ namespace skyband {
 void sky_channels(const VisibleSky& sky, const SkyTables& tables, double max_step_rad, std::vector<SkyFanTriangle>& fan,
                   double out[2]) {
   if (!sky.exact()) {
-    integrate_irradiance_channels<2>(*sky.bands, [&](const Vec3& d, double* c) { tables.grid.lookup_unit_n<2>(d, c); }, out,
-                                     max_step_rad);
+    integrate_irradiance_channels<2>(
+        *sky.bands, [&](const Vec3& d, double* c) { tables.grid.lookup_unit_n<2>(d, c); }, out, max_step_rad);
     return;
   }
   sky.fan(fan);

@@ -8,9 +8,9 @@
 #include <tbb/parallel_for.h>
 
 #include "geometry/core/input_error.h"
+#include "geometry/core/thread_arena.h"
 #include "lighting/integrals/fast_exp.h"
 #include "lighting/sky/perez_sky.h"
-#include "geometry/core/thread_arena.h"
 
 namespace skyband {
 
@@ -18,9 +18,10 @@ namespace {
 
 constexpr int kNodes = kCumulativeSkyCells + 1;
 
-
 // e^x, by the table of fast_exp.h where x ≤ 0 (b ≤ 0 always; d < 0 in all but odd overcast skies).
-double exp_of(double x) { return x <= 0 ? exp_neg(-x) : std::exp(x); }
+double exp_of(double x) {
+  return x <= 0 ? exp_neg(-x) : std::exp(x);
+}
 
 struct HourSky {
   PerezSkyCoefficients k;
@@ -101,9 +102,12 @@ CumulativeSky cumulative_perez_sky(std::span<const WeatherHour> hours, int threa
         const int ix = std::clamp(static_cast<int>(u), 0, kCumulativeSkyCells - 1);
         const int iy = std::clamp(static_cast<int>(t), 0, kCumulativeSkyCells - 1);
         const double fx = std::clamp(u - ix, 0.0, 1.0), fy = std::clamp(t - iy, 0.0, 1.0);
-        const auto at = [&](int x, int y, int c) { return coarse[(static_cast<std::size_t>(y) * kNodes + static_cast<std::size_t>(x)) * 2 + c]; };
+        const auto at = [&](int x, int y, int c) {
+          return coarse[(static_cast<std::size_t>(y) * kNodes + static_cast<std::size_t>(x)) * 2 + c];
+        };
         for (int c = 0; c < 2; ++c)
-          v[c] = (1 - fy) * ((1 - fx) * at(ix, iy, c) + fx * at(ix + 1, iy, c)) + fy * ((1 - fx) * at(ix, iy + 1, c) + fx * at(ix + 1, iy + 1, c));
+          v[c] = (1 - fy) * ((1 - fx) * at(ix, iy, c) + fx * at(ix + 1, iy, c)) +
+                 fy * ((1 - fx) * at(ix, iy + 1, c) + fx * at(ix + 1, iy + 1, c));
       },
       threads);
   return out;

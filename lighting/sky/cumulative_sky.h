@@ -29,19 +29,19 @@ inline constexpr int kCumulativeSkyCells = 64;
 
 // One interval of weather, ready for lighting: the sun at its middle and its mean irradiances.
 struct WeatherHour {
-  Vec3 sun_dir{0, 0, 1};  // unit, world frame (x east, y north, z up); may be below the horizon
-  double hours = 1;       // length of the interval (h)
-  int day_of_year = 1;    // 1..366, for the extraterrestrial irradiance of the sky's brightness
+  Vec3 sun_dir{0, 0, 1};                            // unit, world frame (x east, y north, z up); may be below the horizon
+  double hours = 1;                                 // length of the interval (h)
+  int day_of_year = 1;                              // 1..366, for the extraterrestrial irradiance of the sky's brightness
   double ghi_W_m2 = 0, dni_W_m2 = 0, dhi_W_m2 = 0;  // means over the interval
   double ghi_lx = 0, dni_lx = 0, dhi_lx = 0;        // illuminances (the file's, or Perez 1990)
-  double albedo = 0.2;                               // ground reflectance, [0, 1]
+  double albedo = 0.2;                              // ground reflectance, [0, 1]
 };
 
 struct CumulativeSky {
-  ProjectedSkyGrid grid;          // channels: W·h·m⁻²·sr⁻¹, cd·h·m⁻²
-  double horizontal_Wh_m2 = 0;    // Σ Δt·DHI: the open horizontal face's sky irradiation
-  double horizontal_lxh = 0;      // Σ Δt·E_v,diffuse (lx·h)
-  std::size_t sky_hours = 0;      // intervals with DHI > 0
+  ProjectedSkyGrid grid;        // channels: W·h·m⁻²·sr⁻¹, cd·h·m⁻²
+  double horizontal_Wh_m2 = 0;  // Σ Δt·DHI: the open horizontal face's sky irradiation
+  double horizontal_lxh = 0;    // Σ Δt·E_v,diffuse (lx·h)
+  std::size_t sky_hours = 0;    // intervals with DHI > 0
 };
 
 // Throws InputError (naming the interval's index) for a non-finite or negative irradiance.

@@ -22,47 +22,46 @@ constexpr double kDeg = kPi / 180.0;
 // (x = x1 + x2 Z + Δ (x3 + x4 Z); bin 1's c and d use eqs. 7–8 instead). The values are those of
 // Radiance's gendaymtx.c (PerezCoeff, which cites the paper together with its erratum, Solar
 // Energy 51(5) 423) and gendaylit.c (coeff_perez); the two agree digit for digit.
-constexpr double kPerezTable[kPerezBinCount][5][4] = {
-    {{1.3525, -0.2576, -0.2690, -1.4366},
-     {-0.7670, 0.0007, 1.2734, -0.1233},
-     {2.8000, 0.6004, 1.2375, 1.0000},
-     {1.8734, 0.6297, 0.9738, 0.2809},
-     {0.0356, -0.1246, -0.5718, 0.9938}},
-    {{-1.2219, -0.7730, 1.4148, 1.1016},
-     {-0.2054, 0.0367, -3.9128, 0.9156},
-     {6.9750, 0.1774, 6.4477, -0.1239},
-     {-1.5798, -0.5081, -1.7812, 0.1080},
-     {0.2624, 0.0672, -0.2190, -0.4285}},
-    {{-1.1000, -0.2515, 0.8952, 0.0156},
-     {0.2782, -0.1812, -4.5000, 1.1766},
-     {24.7219, -13.0812, -37.7000, 34.8438},
-     {-5.0000, 1.5218, 3.9229, -2.6204},
-     {-0.0156, 0.1597, 0.4199, -0.5562}},
-    {{-0.5484, -0.6654, -0.2672, 0.7117},
-     {0.7234, -0.6219, -5.6812, 2.6297},
-     {33.3389, -18.3000, -62.2500, 52.0781},
-     {-3.5000, 0.0016, 1.1477, 0.1062},
-     {0.4659, -0.3296, -0.0876, -0.0329}},
-    {{-0.6000, -0.3566, -2.5000, 2.3250},
-     {0.2937, 0.0496, -5.6812, 1.8415},
-     {21.0000, -4.7656, -21.5906, 7.2492},
-     {-3.5000, -0.1554, 1.4062, 0.3988},
-     {0.0032, 0.0766, -0.0656, -0.1294}},
-    {{-1.0156, -0.3670, 1.0078, 1.4051},
-     {0.2875, -0.5328, -3.8500, 3.3750},
-     {14.0000, -0.9999, -7.1406, 7.5469},
-     {-3.4000, -0.1078, -1.0750, 1.5702},
-     {-0.0672, 0.4016, 0.3017, -0.4844}},
-    {{-1.0000, 0.0211, 0.5025, -0.5119},
-     {-0.3000, 0.1922, 0.7023, -1.6317},
-     {19.0000, -5.0000, 1.2438, -1.9094},
-     {-4.0000, 0.0250, 0.3844, 0.2656},
-     {1.0468, -0.3788, -2.4517, 1.4656}},
-    {{-1.0500, 0.0289, 0.4260, 0.3590},
-     {-0.3250, 0.1156, 0.7781, 0.0025},
-     {31.0625, -14.5000, -46.1148, 55.3750},
-     {-7.2312, 0.4050, 13.3500, 0.6234},
-     {1.5000, -0.6426, 1.8564, 0.5636}}};
+constexpr double kPerezTable[kPerezBinCount][5][4] = {{{1.3525, -0.2576, -0.2690, -1.4366},
+                                                       {-0.7670, 0.0007, 1.2734, -0.1233},
+                                                       {2.8000, 0.6004, 1.2375, 1.0000},
+                                                       {1.8734, 0.6297, 0.9738, 0.2809},
+                                                       {0.0356, -0.1246, -0.5718, 0.9938}},
+                                                      {{-1.2219, -0.7730, 1.4148, 1.1016},
+                                                       {-0.2054, 0.0367, -3.9128, 0.9156},
+                                                       {6.9750, 0.1774, 6.4477, -0.1239},
+                                                       {-1.5798, -0.5081, -1.7812, 0.1080},
+                                                       {0.2624, 0.0672, -0.2190, -0.4285}},
+                                                      {{-1.1000, -0.2515, 0.8952, 0.0156},
+                                                       {0.2782, -0.1812, -4.5000, 1.1766},
+                                                       {24.7219, -13.0812, -37.7000, 34.8438},
+                                                       {-5.0000, 1.5218, 3.9229, -2.6204},
+                                                       {-0.0156, 0.1597, 0.4199, -0.5562}},
+                                                      {{-0.5484, -0.6654, -0.2672, 0.7117},
+                                                       {0.7234, -0.6219, -5.6812, 2.6297},
+                                                       {33.3389, -18.3000, -62.2500, 52.0781},
+                                                       {-3.5000, 0.0016, 1.1477, 0.1062},
+                                                       {0.4659, -0.3296, -0.0876, -0.0329}},
+                                                      {{-0.6000, -0.3566, -2.5000, 2.3250},
+                                                       {0.2937, 0.0496, -5.6812, 1.8415},
+                                                       {21.0000, -4.7656, -21.5906, 7.2492},
+                                                       {-3.5000, -0.1554, 1.4062, 0.3988},
+                                                       {0.0032, 0.0766, -0.0656, -0.1294}},
+                                                      {{-1.0156, -0.3670, 1.0078, 1.4051},
+                                                       {0.2875, -0.5328, -3.8500, 3.3750},
+                                                       {14.0000, -0.9999, -7.1406, 7.5469},
+                                                       {-3.4000, -0.1078, -1.0750, 1.5702},
+                                                       {-0.0672, 0.4016, 0.3017, -0.4844}},
+                                                      {{-1.0000, 0.0211, 0.5025, -0.5119},
+                                                       {-0.3000, 0.1922, 0.7023, -1.6317},
+                                                       {19.0000, -5.0000, 1.2438, -1.9094},
+                                                       {-4.0000, 0.0250, 0.3844, 0.2656},
+                                                       {1.0468, -0.3788, -2.4517, 1.4656}},
+                                                      {{-1.0500, 0.0289, 0.4260, 0.3590},
+                                                       {-0.3250, 0.1156, 0.7781, 0.0025},
+                                                       {31.0625, -14.5000, -46.1148, 55.3750},
+                                                       {-7.2312, 0.4050, 13.3500, 0.6234},
+                                                       {1.5000, -0.6426, 1.8564, 0.5636}}};
 
 std::string fmt(double v) {
   char buf[48];
@@ -138,7 +137,9 @@ struct ArcRule {
   int n_top, n_mid, n_low;
 };
 
-ArcRule arc_rule(int top, int mid, int low) { return {&gauss_rule(top), &gauss_rule(mid), &gauss_rule(low), top, mid, low}; }
+ArcRule arc_rule(int top, int mid, int low) {
+  return {&gauss_rule(top), &gauss_rule(mid), &gauss_rule(low), top, mid, low};
+}
 
 // exp(−x) by lighting/integrals/fast_exp.h (relative error < 3e-11, far below the quadrature's).
 double exp_term_arc(double A, double B, double s, double psi_a, double psi_b, const ArcRule& rule) {
@@ -172,9 +173,12 @@ double exp_term_arc(double A, double B, double s, double psi_a, double psi_b, co
     double next_mu = mu / kRatio;
     if (next_mu < 1.5 * floor_mu) next_mu = floor_mu;
     const double p = next_mu <= mu_lo ? psi_b : psi_of(next_mu);
-    if (first) total += gl(psi, p, *rule.top, rule.n_top);
-    else if (mu <= s) total += gl(psi, p, *rule.low, rule.n_low);
-    else total += gl(psi, p, *rule.mid, rule.n_mid);
+    if (first)
+      total += gl(psi, p, *rule.top, rule.n_top);
+    else if (mu <= s)
+      total += gl(psi, p, *rule.low, rule.n_low);
+    else
+      total += gl(psi, p, *rule.mid, rule.n_mid);
     first = false;
     psi = p;
     mu = next_mu;
@@ -235,8 +239,10 @@ void indicatrix_zeros(const PerezSkyCoefficients& k, std::vector<double>& out) {
       for (int it = 0; it < 200 && hi - lo > 0; ++it) {
         const double mid = 0.5 * (lo + hi);
         if (mid <= lo || mid >= hi) break;
-        if ((indicatrix_raw(mid, k) < 0) == lo_neg) lo = mid;
-        else hi = mid;
+        if ((indicatrix_raw(mid, k) < 0) == lo_neg)
+          lo = mid;
+        else
+          hi = mid;
       }
       out.push_back(0.5 * (lo + hi));
     }
@@ -254,11 +260,13 @@ double relative_air_mass_kasten_young(double zenith_rad) {
 }
 
 double extraterrestrial_normal_irradiance_W_m2(int day_of_year, double solar_constant_W_m2) {
-  if (day_of_year < 1 || day_of_year > 366) throw InputError("Perez sky: day of year " + std::to_string(day_of_year) + " is not in 1..366");
+  if (day_of_year < 1 || day_of_year > 366)
+    throw InputError("Perez sky: day of year " + std::to_string(day_of_year) + " is not in 1..366");
   if (!(solar_constant_W_m2 > 0) || !std::isfinite(solar_constant_W_m2))
     throw InputError("Perez sky: solar constant " + fmt(solar_constant_W_m2) + " W/m2 must be positive");
   const double g = 2 * kPi * (day_of_year - 1) / 365.0;
-  const double e0 = 1.000110 + 0.034221 * std::cos(g) + 0.001280 * std::sin(g) + 0.000719 * std::cos(2 * g) + 0.000077 * std::sin(2 * g);
+  const double e0 =
+      1.000110 + 0.034221 * std::cos(g) + 0.001280 * std::sin(g) + 0.000719 * std::cos(2 * g) + 0.000077 * std::sin(2 * g);
   return solar_constant_W_m2 * e0;
 }
 
@@ -388,8 +396,8 @@ double perez_horizontal_integral(const PerezSkyCoefficients& k, const Vec3& sun_
     const double g0 = breaks[p], g1 = breaks[p + 1];
     if (!(g1 > g0)) continue;
     const double gm = 0.5 * (g0 + g1);
-    if (indicatrix_raw(gm, k) <= 0) continue;                             // F clamped to 0 here
-    if (circle_integral(k, cz, sz, mu_cap, gm, probe) == 0.0) continue;   // circles wholly outside the sky
+    if (indicatrix_raw(gm, k) <= 0) continue;                            // F clamped to 0 here
+    if (circle_integral(k, cz, sz, mu_cap, gm, probe) == 0.0) continue;  // circles wholly outside the sky
     const bool graded = s_layer > 0 && (std::abs(gm - t_lo) < s_layer || std::abs(gm - t_hi) < s_layer);
     const int n = graded ? n_graded : nodes;
     const GaussRule& outer = gauss_rule(n);
@@ -416,7 +424,8 @@ double PerezSky::radiance(const Vec3& dir) const {
 }
 
 PerezSky make_perez_sky(const PerezSkyCondition& condition, const Vec3& sun_dir, double horizontal_diffuse, int nodes) {
-  if (!sun_dir.allFinite() || std::abs(sun_dir.norm() - 1.0) > 1e-9) throw InputError("Perez sky: sun direction is not a unit vector");
+  if (!sun_dir.allFinite() || std::abs(sun_dir.norm() - 1.0) > 1e-9)
+    throw InputError("Perez sky: sun direction is not a unit vector");
   require_finite_nonnegative(horizontal_diffuse, "horizontal diffuse quantity");
   PerezSky sky;
   sky.sun_dir = sun_dir;

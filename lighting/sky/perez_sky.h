@@ -84,12 +84,11 @@ namespace skyband {
 inline constexpr double kPerezKappa = 1.041;  // rad⁻³, Perez90 eq. 1
 inline constexpr int kPerezBinCount = 8;
 // Lower edges of the clearness bins 1..8 (Perez90 Table 1, Perez93 Table 1); bin 8 is open above.
-inline constexpr double kPerezClearnessLowerEdges[kPerezBinCount] = {1.000, 1.065, 1.230, 1.500,
-                                                                     1.950, 2.800, 4.500, 6.200};
+inline constexpr double kPerezClearnessLowerEdges[kPerezBinCount] = {1.000, 1.065, 1.230, 1.500, 1.950, 2.800, 4.500, 6.200};
 inline constexpr double kPerezMinBrightness = 0.01;  // gendaylit's limits on Δ
 inline constexpr double kPerezMaxBrightness = 0.6;
 inline constexpr double kPerezMinBrightnessBins2to5 = 0.2;  // gendaylit coeff_lum_perez
-inline constexpr double kSolarConstant_W_m2 = 1367.0;        // WRC 1981, as used by gendaylit
+inline constexpr double kSolarConstant_W_m2 = 1367.0;       // WRC 1981, as used by gendaylit
 
 // Relative optical air mass, F. Kasten & A. T. Young, "Revised optical air mass tables and
 // approximation formula", Applied Optics 28(22) 4735–4738 (1989):
@@ -118,9 +117,9 @@ int perez_clearness_bin(double clearness);
 struct PerezSkyCondition {
   double dhi_W_m2 = 0;
   double dni_W_m2 = 0;
-  double sun_zenith_rad = 0;    // as given (may exceed π/2)
-  double model_zenith_rad = 0;  // min(sun_zenith_rad, π/2): used in ε, m and the coefficients
-  double clearness = 1;         // ε, ≥ 1 (+∞ when DHI = 0)
+  double sun_zenith_rad = 0;                // as given (may exceed π/2)
+  double model_zenith_rad = 0;              // min(sun_zenith_rad, π/2): used in ε, m and the coefficients
+  double clearness = 1;                     // ε, ≥ 1 (+∞ when DHI = 0)
   double brightness = kPerezMinBrightness;  // Δ clamped to [0.01, 0.6]
   double brightness_unclamped = 0;          // Δ before the clamp
   int bin = 0;                              // 0..7
@@ -158,9 +157,9 @@ double perez_horizontal_integral(const PerezSkyCoefficients& k, const Vec3& sun_
 
 // One hour's sky: L(w) = scale · l(θ(w), γ(w)).
 struct PerezSky {
-  Vec3 sun_dir{0, 0, 1};      // unit, world frame; may point below the horizon
+  Vec3 sun_dir{0, 0, 1};  // unit, world frame; may point below the horizon
   PerezSkyCoefficients coefficients;
-  double scale = 0;           // 0: no sky
+  double scale = 0;  // 0: no sky
   PerezSkyCondition condition;
 
   // Radiance (W·m⁻²·sr⁻¹) or luminance (cd·m⁻²) of unit direction `dir`, in the unit of the
@@ -173,7 +172,6 @@ struct PerezSky {
 // luminance; ≥ 0). No sky (scale 0) when the condition has DHI = 0 or horizontal_diffuse = 0.
 // Throws InputError if sun_dir is not a unit vector, or horizontal_diffuse is negative or not
 // finite. The sun direction should agree with condition.sun_zenith_rad (it is not checked).
-PerezSky make_perez_sky(const PerezSkyCondition& condition, const Vec3& sun_dir, double horizontal_diffuse,
-                        int nodes = 24);
+PerezSky make_perez_sky(const PerezSkyCondition& condition, const Vec3& sun_dir, double horizontal_diffuse, int nodes = 24);
 
 }  // namespace skyband

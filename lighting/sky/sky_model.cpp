@@ -51,7 +51,8 @@ std::variant<SkyTable, CieSky> make_sky(const Atmosphere& atm, const Vec3& sun, 
   if (probe.sun_hidden()) shape += sun_dn * std::max(0.0, sun.z());
   if (!shape.all_finite() || !(luminous(shape) > 1e-9 * luminous(cie_d65()))) shape = cie_d65();
   const double alt = std::asin(std::clamp(sun.z(), -1.0, 1.0));
-  const double lz = spec.zenith_luminance_cd_m2 ? *spec.zenith_luminance_cd_m2 : cie_default_zenith_luminance_cd_m2(spec.cie_type, alt);
+  const double lz =
+      spec.zenith_luminance_cd_m2 ? *spec.zenith_luminance_cd_m2 : cie_default_zenith_luminance_cd_m2(spec.cie_type, alt);
   return CieSky(spec.cie_type, sun, lz, shape);
 }
 
@@ -66,7 +67,9 @@ SkyModel::SkyModel(const AtmosphereParams& atmosphere, const Vec3& sun_dir, cons
   if (const CieSky* c = cie(); c && c->sun_hidden()) sun_direct_normal_ = Spectrum{};
 }
 
-double SkyModel::sun_altitude_rad() const { return std::asin(std::clamp(sun_dir_.z(), -1.0, 1.0)); }
+double SkyModel::sun_altitude_rad() const {
+  return std::asin(std::clamp(sun_dir_.z(), -1.0, 1.0));
+}
 
 std::string SkyModel::model_name() const {
   if (const CieSky* c = cie()) return c->name();

@@ -27,8 +27,8 @@
 
 #include "geometry/core/vec3.h"
 #include "lighting/atmosphere/atmosphere.h"
-#include "lighting/sky/cie_sky.h"
 #include "lighting/atmosphere/sky_table.h"
+#include "lighting/sky/cie_sky.h"
 #include "lighting/spectrum/spectrum.h"
 
 namespace skyband {

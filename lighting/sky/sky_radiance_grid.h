@@ -63,8 +63,8 @@ inline bool sky_grid_cell_unit(const Vec3& dir, int cells, int& ix, int& iy, dou
 inline void sky_grid_bilinear(const float* data, std::size_t n, int ix, int iy, double fx, double fy, double* out) {
   const std::size_t row = static_cast<std::size_t>(kSkyGridCells + 1) * n;
   const float* a = data + static_cast<std::size_t>(iy) * row + static_cast<std::size_t>(ix) * n;  // (ix, iy)
-  const float* b = a + n;                                                                       // (ix + 1, iy)
-  const float* c = a + row;                                                                     // (ix, iy + 1)
+  const float* b = a + n;                                                                         // (ix + 1, iy)
+  const float* c = a + row;                                                                       // (ix, iy + 1)
   const float* d = c + n;
   const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
   for (std::size_t k = 0; k < n; ++k) out[k] = w00 * a[k] + w10 * b[k] + w01 * c[k] + w11 * d[k];

@@ -110,10 +110,9 @@ constexpr std::array<CmfRow, 95> kCie1931_5nm = {{
 
 // CIE D65, relative spectral power, 380–780 nm every 10 nm (CIE 15:2004, Table T.1).
 constexpr std::array<double, kSpectrumSamples> kD65 = {
-    49.9755, 54.6482, 82.7549, 91.4860, 93.4318, 86.6823, 104.865, 117.008, 117.812, 114.861, 115.923,
-    108.811, 109.354, 107.802, 104.790, 107.689, 104.405, 104.046, 100.000, 96.3342, 95.7880, 88.6856,
-    90.0062, 89.5991, 87.6987, 83.2886, 83.6992, 80.0268, 80.2146, 82.2778, 78.2842, 69.7213, 71.6091,
-    74.3490, 61.6040, 69.8856, 75.0870, 63.5927, 46.4182, 66.8054, 63.3828};
+    49.9755, 54.6482, 82.7549, 91.4860, 93.4318, 86.6823, 104.865, 117.008, 117.812, 114.861, 115.923, 108.811, 109.354, 107.802,
+    104.790, 107.689, 104.405, 104.046, 100.000, 96.3342, 95.7880, 88.6856, 90.0062, 89.5991, 87.6987, 83.2886, 83.6992, 80.0268,
+    80.2146, 82.2778, 78.2842, 69.7213, 71.6091, 74.3490, 61.6040, 69.8856, 75.0870, 63.5927, 46.4182, 66.8054, 63.3828};
 
 // Robertson (1968) isotemperature lines: reciprocal temperature (MK⁻¹), u, v (CIE 1960), slope t.
 struct RobertsonRow {
@@ -159,10 +158,18 @@ const GridCmf& grid_cmf() {
 
 }  // namespace
 
-std::span<const CmfRow> cie1931_2deg_5nm() { return kCie1931_5nm; }
-const Spectrum& cmf_x() { return grid_cmf().x; }
-const Spectrum& cmf_y() { return grid_cmf().y; }
-const Spectrum& cmf_z() { return grid_cmf().z; }
+std::span<const CmfRow> cie1931_2deg_5nm() {
+  return kCie1931_5nm;
+}
+const Spectrum& cmf_x() {
+  return grid_cmf().x;
+}
+const Spectrum& cmf_y() {
+  return grid_cmf().y;
+}
+const Spectrum& cmf_z() {
+  return grid_cmf().z;
+}
 const Spectrum& xyz_weights(int c) {
   const GridCmf& g = grid_cmf();
   return c == 0 ? g.wx : c == 1 ? g.wy : g.wz;
@@ -191,7 +198,7 @@ const Eigen::Matrix3d& linear_srgb_from_xyz() {
   // RGB→XYZ matrix are the primaries' XYZ (Y = 1) scaled so that RGB (1,1,1) maps to the white.
   static const Eigen::Matrix3d m = [] {
     const double prim[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};  // Rec. 709 R, G, B
-    const double wx = 0.3127, wy = 0.3290;                                    // D65
+    const double wx = 0.3127, wy = 0.3290;                                 // D65
     Eigen::Matrix3d p;
     for (int c = 0; c < 3; ++c) {
       const double x = prim[c][0], y = prim[c][1];
@@ -207,9 +214,13 @@ const Eigen::Matrix3d& linear_srgb_from_xyz() {
   return m;
 }
 
-Vec3 xyz_to_linear_srgb(const Xyz& xyz) { return linear_srgb_from_xyz() * Vec3(xyz.X, xyz.Y, xyz.Z); }
+Vec3 xyz_to_linear_srgb(const Xyz& xyz) {
+  return linear_srgb_from_xyz() * Vec3(xyz.X, xyz.Y, xyz.Z);
+}
 
-Vec3 spectrum_to_linear_srgb(const Spectrum& s) { return xyz_to_linear_srgb(spectrum_to_xyz(s)); }
+Vec3 spectrum_to_linear_srgb(const Spectrum& s) {
+  return xyz_to_linear_srgb(spectrum_to_xyz(s));
+}
 
 std::optional<Vec2> chromaticity_xy(const Xyz& xyz) {
   const double sum = xyz.X + xyz.Y + xyz.Z;
@@ -245,9 +256,9 @@ std::optional<double> cct_robertson_K(const Vec2& xy) {
 }
 
 double planck_radiance_W_m2_sr_nm(double wavelength_nm, double temperature_K) {
-  constexpr double h = 6.62607015e-34;   // J·s (exact, SI 2019)
-  constexpr double c = 299792458.0;      // m/s (exact)
-  constexpr double k = 1.380649e-23;     // J/K (exact, SI 2019)
+  constexpr double h = 6.62607015e-34;    // J·s (exact, SI 2019)
+  constexpr double c = 299792458.0;       // m/s (exact)
+  constexpr double k = 1.380649e-23;      // J/K (exact, SI 2019)
   const double l = wavelength_nm * 1e-9;  // metres
   const double per_m = 2.0 * h * c * c / std::pow(l, 5) / std::expm1(h * c / (l * k * temperature_K));
   return per_m * 1e-9;  // W·m⁻²·sr⁻¹·m⁻¹ → per nm

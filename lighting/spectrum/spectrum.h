@@ -15,7 +15,9 @@ inline constexpr double kLambdaMinNm = 380.0;
 inline constexpr double kLambdaStepNm = 10.0;
 inline constexpr double kLambdaMaxNm = kLambdaMinNm + kLambdaStepNm * (kSpectrumSamples - 1);
 
-inline constexpr double wavelength_nm(int i) { return kLambdaMinNm + kLambdaStepNm * i; }
+inline constexpr double wavelength_nm(int i) {
+  return kLambdaMinNm + kLambdaStepNm * i;
+}
 
 struct Spectrum {
   std::array<double, kSpectrumSamples> v{};
@@ -28,10 +30,22 @@ struct Spectrum {
   double& operator[](int i) { return v[static_cast<std::size_t>(i)]; }
   double operator[](int i) const { return v[static_cast<std::size_t>(i)]; }
 
-  Spectrum& operator+=(const Spectrum& o) { for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] += o[i]; return *this; }
-  Spectrum& operator-=(const Spectrum& o) { for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] -= o[i]; return *this; }
-  Spectrum& operator*=(const Spectrum& o) { for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] *= o[i]; return *this; }
-  Spectrum& operator*=(double k) { for (auto& x : v) x *= k; return *this; }
+  Spectrum& operator+=(const Spectrum& o) {
+    for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] += o[i];
+    return *this;
+  }
+  Spectrum& operator-=(const Spectrum& o) {
+    for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] -= o[i];
+    return *this;
+  }
+  Spectrum& operator*=(const Spectrum& o) {
+    for (int i = 0; i < kSpectrumSamples; ++i) (*this)[i] *= o[i];
+    return *this;
+  }
+  Spectrum& operator*=(double k) {
+    for (auto& x : v) x *= k;
+    return *this;
+  }
   friend Spectrum operator+(Spectrum a, const Spectrum& b) { return a += b; }
   friend Spectrum operator-(Spectrum a, const Spectrum& b) { return a -= b; }
   friend Spectrum operator*(Spectrum a, const Spectrum& b) { return a *= b; }
@@ -44,7 +58,11 @@ struct Spectrum {
     for (int i = 0; i + 1 < kSpectrumSamples; ++i) sum += 0.5 * ((*this)[i] + (*this)[i + 1]) * kLambdaStepNm;
     return sum;
   }
-  bool all_finite() const { for (double x : v) if (!std::isfinite(x)) return false; return true; }
+  bool all_finite() const {
+    for (double x : v)
+      if (!std::isfinite(x)) return false;
+    return true;
+  }
 };
 
 // Linear interpolation of a tabulated spectrum (ascending wavelengths) onto the grid; values

@@ -8,11 +8,17 @@ namespace {
 constexpr double kDeg = kPi / 180.0;
 constexpr double kArcmin = kPi / (180.0 * 60.0);
 
-double saemundsson_arcmin(double h_deg) { return 1.02 / std::tan((h_deg + 10.3 / (h_deg + 5.11)) * kDeg); }
-double bennett_arcmin(double h_deg) { return 1.0 / std::tan((h_deg + 7.31 / (h_deg + 4.4)) * kDeg); }
+double saemundsson_arcmin(double h_deg) {
+  return 1.02 / std::tan((h_deg + 10.3 / (h_deg + 5.11)) * kDeg);
+}
+double bennett_arcmin(double h_deg) {
+  return 1.0 / std::tan((h_deg + 7.31 / (h_deg + 4.4)) * kDeg);
+}
 }  // namespace
 
-double altitude_of(const Vec3& dir) { return std::asin(std::clamp(dir.z(), -1.0, 1.0)); }
+double altitude_of(const Vec3& dir) {
+  return std::asin(std::clamp(dir.z(), -1.0, 1.0));
+}
 
 double azimuth_of(const Vec3& dir) {
   const double az = std::atan2(dir.x(), dir.y());

@@ -23,8 +23,7 @@ inline const double kSunSolidAngle_sr = 2.0 * kPi * (1.0 - std::cos(kSunAngularR
 
 // Unit direction towards altitude/azimuth: (sin az·cos alt, cos az·cos alt, sin alt).
 inline Vec3 direction_from_altitude_azimuth(double altitude_rad, double azimuth_rad) {
-  return {std::sin(azimuth_rad) * std::cos(altitude_rad), std::cos(azimuth_rad) * std::cos(altitude_rad),
-          std::sin(altitude_rad)};
+  return {std::sin(azimuth_rad) * std::cos(altitude_rad), std::cos(azimuth_rad) * std::cos(altitude_rad), std::sin(altitude_rad)};
 }
 // Inverse of direction_from_altitude_azimuth for a unit vector; azimuth in [0, 2π).
 double altitude_of(const Vec3& dir);

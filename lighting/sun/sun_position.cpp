@@ -22,6 +22,8 @@ struct PeriodicTerm {
   double a, b, c;
 };
 
+// The SPA tables keep the layout of their source, several terms a line:
+// clang-format off
 constexpr PeriodicTerm kL0[] = {
     {175347046.0, 0, 0}, {3341656.0, 4.6692568, 6283.07585}, {34894.0, 4.6261, 12566.1517},
     {3497.0, 2.7441, 5753.3849}, {3418.0, 2.8289, 3.5231}, {3136.0, 3.6277, 77713.7715},
@@ -128,6 +130,7 @@ constexpr NutationTerm kNutation[] = {
     {{0, 1, 1, 0, 0}, -3, 0, 0, 0},                 {{0, -1, 1, 2, 2}, -3, 0, 0, 0},
     {{2, -1, -1, 2, 2}, -3, 0, 0, 0},               {{0, 0, 3, 2, 2}, -3, 0, 0, 0},
     {{2, -1, 0, 2, 2}, -3, 0, 0, 0}};
+// clang-format on
 static_assert(std::size(kNutation) == 63);
 static_assert(std::size(kL0) == 64 && std::size(kL1) == 34 && std::size(kL2) == 20);
 static_assert(std::size(kR0) == 40 && std::size(kR1) == 10 && std::size(kR2) == 6);
@@ -156,7 +159,9 @@ double earth_value(std::span<const std::span<const PeriodicTerm>> series, double
   return s / 1e8;
 }
 
-double third_order(double a, double b, double c, double d, double x) { return a + x * (b + x * (c + x * d)); }
+double third_order(double a, double b, double c, double d, double x) {
+  return a + x * (b + x * (c + x * d));
+}
 
 [[noreturn]] void bad(const std::string& field, double value, const std::string& why) {
   char buf[64];
@@ -164,7 +169,9 @@ double third_order(double a, double b, double c, double d, double x) { return a 
   throw InputError("sun position: " + field + " = " + buf + " " + why);
 }
 
-bool is_leap(int y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+bool is_leap(int y) {
+  return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+}
 int days_in_month(int y, int m) {
   static constexpr int d[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
   return m == 2 && is_leap(y) ? 29 : d[m - 1];
@@ -194,10 +201,12 @@ SpaResult sun_position_spa(const SpaInput& in) {
   const auto within = [](double x, double lo, double hi) { return !std::isnan(x) && x >= lo && x <= hi; };
   if (!within(in.latitude_deg, -90, 90)) bad("latitude_deg", in.latitude_deg, "is outside [-90, 90]");
   if (!within(in.longitude_deg, -180, 180)) bad("longitude_deg", in.longitude_deg, "is outside [-180, 180]");
-  if (!within(in.elevation_m, -6500000, std::numeric_limits<double>::max())) bad("elevation_m", in.elevation_m, "is below -6500000 m");
+  if (!within(in.elevation_m, -6500000, std::numeric_limits<double>::max()))
+    bad("elevation_m", in.elevation_m, "is below -6500000 m");
   if (in.time.year < -2000 || in.time.year > 6000) bad("year", in.time.year, "is outside the SPA's range [-2000, 6000]");
   if (!within(in.pressure_mbar, 0, 5000) || in.pressure_mbar == 0) bad("pressure_mbar", in.pressure_mbar, "is outside (0, 5000]");
-  if (!within(in.temperature_C, -273, 6000) || in.temperature_C == -273) bad("temperature_C", in.temperature_C, "is outside (-273, 6000]");
+  if (!within(in.temperature_C, -273, 6000) || in.temperature_C == -273)
+    bad("temperature_C", in.temperature_C, "is outside (-273, 6000]");
   if (!within(in.delta_t_s, -8000, 8000)) bad("delta_t_s", in.delta_t_s, "is outside [-8000, 8000]");
   if (!within(in.atmos_refraction_deg, -5, 5)) bad("atmos_refraction_deg", in.atmos_refraction_deg, "is outside [-5, 5]");
   if (!within(in.time.utc_offset_hours, -18, 18)) bad("utc_offset_hours", in.time.utc_offset_hours, "is outside [-18, 18]");
@@ -227,12 +236,11 @@ SpaResult sun_position_spa(const SpaInput& in) {
   const double beta = -B;
 
   // 3.4 Nutation (eqs. 15–23).
-  const double x[5] = {
-      third_order(297.85036, 445267.111480, -0.0019142, 1.0 / 189474.0, jce),  // X0 elongation of the Moon
-      third_order(357.52772, 35999.050340, -0.0001603, -1.0 / 300000.0, jce),  // X1 anomaly of the Sun
-      third_order(134.96298, 477198.867398, 0.0086972, 1.0 / 56250.0, jce),    // X2 anomaly of the Moon
-      third_order(93.27191, 483202.017538, -0.0036825, 1.0 / 327270.0, jce),   // X3 Moon's argument of latitude
-      third_order(125.04452, -1934.136261, 0.0020708, 1.0 / 450000.0, jce)};   // X4 ascending node
+  const double x[5] = {third_order(297.85036, 445267.111480, -0.0019142, 1.0 / 189474.0, jce),  // X0 elongation of the Moon
+                       third_order(357.52772, 35999.050340, -0.0001603, -1.0 / 300000.0, jce),  // X1 anomaly of the Sun
+                       third_order(134.96298, 477198.867398, 0.0086972, 1.0 / 56250.0, jce),    // X2 anomaly of the Moon
+                       third_order(93.27191, 483202.017538, -0.0036825, 1.0 / 327270.0, jce),   // X3 Moon's argument of latitude
+                       third_order(125.04452, -1934.136261, 0.0020708, 1.0 / 450000.0, jce)};   // X4 ascending node
   double dpsi = 0, deps = 0;
   for (const auto& t : kNutation) {
     double arg = 0;
@@ -248,8 +256,7 @@ SpaResult sun_position_spa(const SpaInput& in) {
 
   // 3.5 True obliquity of the ecliptic (eqs. 24–25), U = JME/10.
   const double u = jme / 10.0;
-  static constexpr double kEps[] = {84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67,
-                                    -39.05,    7.12,     27.87, 5.79,    2.45};
+  static constexpr double kEps[] = {84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67, -39.05, 7.12, 27.87, 5.79, 2.45};
   double eps0 = 0, up = 1;
   for (double c : kEps) {
     eps0 += c * up;
@@ -286,7 +293,8 @@ SpaResult sun_position_spa(const SpaInput& in) {
   const double yy = 0.99664719 * std::sin(uu) + in.elevation_m / 6378140.0 * std::sin(phi);
   const double Hr = H * kDeg, dr = delta * kDeg;
   const double dalpha = std::atan2(-xx * std::sin(xi) * std::sin(Hr), std::cos(dr) - xx * std::sin(xi) * std::cos(Hr));
-  const double delta_p = std::atan2((std::sin(dr) - yy * std::sin(xi)) * std::cos(dalpha), std::cos(dr) - xx * std::sin(xi) * std::cos(Hr));
+  const double delta_p =
+      std::atan2((std::sin(dr) - yy * std::sin(xi)) * std::cos(dalpha), std::cos(dr) - xx * std::sin(xi) * std::cos(Hr));
   const double Hp = Hr - dalpha;
   r.topocentric_right_ascension_deg = alpha + dalpha / kDeg;
   r.topocentric_declination_deg = delta_p / kDeg;

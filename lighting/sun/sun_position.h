@@ -30,8 +30,7 @@ struct LocalDateTime {
 // supplies it (the CLI's --tz); when it carries one and an explicit offset is also given, they
 // must agree. Anything that does not parse, an impossible date or time, or a missing offset
 // throws InputError naming `flag` and the text.
-LocalDateTime parse_iso8601(std::string_view text, std::string_view flag,
-                            std::optional<double> utc_offset_hours = std::nullopt);
+LocalDateTime parse_iso8601(std::string_view text, std::string_view flag, std::optional<double> utc_offset_hours = std::nullopt);
 
 struct SpaInput {
   double latitude_deg = 0;   // geodetic, north positive, [−90, 90]
@@ -48,16 +47,16 @@ struct SpaInput {
 // can check them against the paper's worked example (Table A5.2).
 struct SpaResult {
   double julian_day = 0;
-  double heliocentric_longitude_deg = 0;  // L (eq. 9–12)
-  double heliocentric_latitude_deg = 0;   // B
-  double earth_radius_au = 0;             // R
-  double nutation_longitude_deg = 0;      // Δψ (eq. 22)
-  double nutation_obliquity_deg = 0;      // Δε (eq. 23)
-  double true_obliquity_deg = 0;          // ε (eq. 25)
-  double apparent_longitude_deg = 0;      // λ (eq. 27)
-  double right_ascension_deg = 0;         // α (eq. 31)
-  double declination_deg = 0;             // δ (eq. 32)
-  double hour_angle_deg = 0;              // H (eq. 33)
+  double heliocentric_longitude_deg = 0;       // L (eq. 9–12)
+  double heliocentric_latitude_deg = 0;        // B
+  double earth_radius_au = 0;                  // R
+  double nutation_longitude_deg = 0;           // Δψ (eq. 22)
+  double nutation_obliquity_deg = 0;           // Δε (eq. 23)
+  double true_obliquity_deg = 0;               // ε (eq. 25)
+  double apparent_longitude_deg = 0;           // λ (eq. 27)
+  double right_ascension_deg = 0;              // α (eq. 31)
+  double declination_deg = 0;                  // δ (eq. 32)
+  double hour_angle_deg = 0;                   // H (eq. 33)
   double topocentric_right_ascension_deg = 0;  // α′ (eq. 38)
   double topocentric_declination_deg = 0;      // δ′ (eq. 39)
   double topocentric_hour_angle_deg = 0;       // H′ (eq. 40)

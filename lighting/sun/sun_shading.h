@@ -12,8 +12,8 @@
 namespace skyband {
 
 // Diffuse part only: E_dn·max(0, N·s)·(1 − w_s)·ρ_d/π.
-inline Spectrum sun_diffuse_radiance(const Material& m, const Vec3& n, const Vec3& sun_dir,
-                                     const Spectrum& e_dn_W_m2_nm, bool sun_visible) {
+inline Spectrum sun_diffuse_radiance(const Material& m, const Vec3& n, const Vec3& sun_dir, const Spectrum& e_dn_W_m2_nm,
+                                     bool sun_visible) {
   const double cos_i = n.dot(sun_dir);
   if (!sun_visible || cos_i <= 0.0) return Spectrum{};
   return m.diffuse_brdf() * e_dn_W_m2_nm * cos_i;

@@ -19,7 +19,9 @@ using skyband::test::slurp;
 
 namespace {
 
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
 
 // The svf column of each output row (the second-last column).
 std::vector<double> svf_column(const fs::path& out) {
@@ -42,10 +44,12 @@ void write_cube_gml(const fs::path& file, double x0, double y0) {
     s << x0 + x << " " << y0 + y << " " << z << " ";
     return s.str();
   };
-  const std::vector<std::string> faces{
-      p(0, 0, 0) + p(0, 10, 0) + p(10, 10, 0) + p(10, 0, 0) + p(0, 0, 0),     p(0, 0, 10) + p(10, 0, 10) + p(10, 10, 10) + p(0, 10, 10) + p(0, 0, 10),
-      p(0, 0, 0) + p(10, 0, 0) + p(10, 0, 10) + p(0, 0, 10) + p(0, 0, 0),     p(10, 0, 0) + p(10, 10, 0) + p(10, 10, 10) + p(10, 0, 10) + p(10, 0, 0),
-      p(10, 10, 0) + p(0, 10, 0) + p(0, 10, 10) + p(10, 10, 10) + p(10, 10, 0), p(0, 10, 0) + p(0, 0, 0) + p(0, 0, 10) + p(0, 10, 10) + p(0, 10, 0)};
+  const std::vector<std::string> faces{p(0, 0, 0) + p(0, 10, 0) + p(10, 10, 0) + p(10, 0, 0) + p(0, 0, 0),
+                                       p(0, 0, 10) + p(10, 0, 10) + p(10, 10, 10) + p(0, 10, 10) + p(0, 0, 10),
+                                       p(0, 0, 0) + p(10, 0, 0) + p(10, 0, 10) + p(0, 0, 10) + p(0, 0, 0),
+                                       p(10, 0, 0) + p(10, 10, 0) + p(10, 10, 10) + p(10, 0, 10) + p(10, 0, 0),
+                                       p(10, 10, 0) + p(0, 10, 0) + p(0, 10, 10) + p(10, 10, 10) + p(10, 10, 0),
+                                       p(0, 10, 0) + p(0, 0, 0) + p(0, 0, 10) + p(0, 10, 10) + p(0, 10, 0)};
   std::ofstream out(file);
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
          "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" xmlns:gml=\"http://www.opengis.net/gml\">\n"
@@ -78,7 +82,8 @@ BOOST_AUTO_TEST_CASE(svf_on_a_citygml_cube_closed_form) {
   BOOST_TEST(svf[0] == 1.0, tt::tolerance(1e-12));
   BOOST_TEST(svf[1] == 0.5, tt::tolerance(1e-9));
   // --lod 2: the cube has none.
-  const auto lod2 = run_skyband("svf --mesh " + q(d / "cube.gml") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o2.csv") + " --lod 2");
+  const auto lod2 =
+      run_skyband("svf --mesh " + q(d / "cube.gml") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o2.csv") + " --lod 2");
   BOOST_TEST(lod2.exit_code == 2, lod2.err);
   BOOST_TEST(lod2.err.find("no triangles") != std::string::npos, lod2.err);
 }
@@ -116,7 +121,7 @@ BOOST_AUTO_TEST_CASE(citygml_3_ends_with_one_error_line, *skyband::test::needs_s
   const fs::path d = skyband::test::test_folder("citygml_cli_v3");
   const fs::path gml = fs::path(SKYBAND_SHARED_DATA) / "citygml" / "lyon_opera_CityGML3.0_LOD2.gml";
   std::ofstream(d / "p.csv") << "x,y,z\n0,0,0\n";
-  skyband::test::check_bad_input({{"svf --mesh " + q(gml) + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv"),
-                                   "CityGML 3.0 is not supported"}},
-                                 d / "o.csv");
+  skyband::test::check_bad_input(
+      {{"svf --mesh " + q(gml) + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv"), "CityGML 3.0 is not supported"}},
+      d / "o.csv");
 }

@@ -19,8 +19,12 @@ using skyband::test::run_skyband;
 
 namespace {
 
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
-void write_cube(const fs::path& file) { skyband::test::write_cube_obj(file); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
+void write_cube(const fs::path& file) {
+  skyband::test::write_cube_obj(file);
+}
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> cells;
@@ -130,8 +134,8 @@ BOOST_AUTO_TEST_CASE(sun_from_place_and_time) {
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
   const std::string when = " --lat 48.14 --lon 11.58 --time 2026-06-21T15:00:00+02:00";
-  const auto r = run_skyband("irradiance --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") +
-                             " --out " + q(d / "out.csv") + when);
+  const auto r = run_skyband("irradiance --quiet --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
+                             q(d / "out.csv") + when);
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST(r.err.empty());
   const auto s = run_skyband("sky" + when + " --json");
@@ -153,19 +157,21 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
   std::ofstream(d / "nan.csv") << "x,y,z\n1,nan,3\n";
   const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --out " + q(d / "out.csv");
   const std::string pts = " --points " + q(d / "ok.csv");
-  skyband::test::check_bad_input({
-      {base + pts, "no sun"},
-      {base + pts + " --sun-altitude 95", "--sun-altitude 95"},
-      {base + pts + " --sun-altitude 30 --lat 10 --lon 10 --time 2026-01-01T12:00:00Z", "not both"},
-      {base + pts + " --lat 10 --time 2026-01-01T12:00:00Z", "--lon"},
-      {base + pts + " --sun-altitude 30 --aod550 -1", "--aod550"},
-      {base + pts + " --sun-altitude 30 --model cie-16", "cie-16"},
-      {base + pts + " --sun-altitude 30 --zenith-luminance 5000", "--zenith-luminance"},
-      {base + pts + " --sun-altitude 30 --bands 0", "--bands"},
-      {base + " --points " + q(d / "absent.csv") + " --sun-altitude 30", "absent.csv"},
-      {base + " --points " + q(d / "nan.csv") + " --sun-altitude 30", "nan.csv"},
-      {"irradiance --mesh " + q(d / "cube.obj") + pts + " --sun-altitude 30", "--out"},
-  }, d / "out.csv");
+  skyband::test::check_bad_input(
+      {
+          {base + pts, "no sun"},
+          {base + pts + " --sun-altitude 95", "--sun-altitude 95"},
+          {base + pts + " --sun-altitude 30 --lat 10 --lon 10 --time 2026-01-01T12:00:00Z", "not both"},
+          {base + pts + " --lat 10 --time 2026-01-01T12:00:00Z", "--lon"},
+          {base + pts + " --sun-altitude 30 --aod550 -1", "--aod550"},
+          {base + pts + " --sun-altitude 30 --model cie-16", "cie-16"},
+          {base + pts + " --sun-altitude 30 --zenith-luminance 5000", "--zenith-luminance"},
+          {base + pts + " --sun-altitude 30 --bands 0", "--bands"},
+          {base + " --points " + q(d / "absent.csv") + " --sun-altitude 30", "absent.csv"},
+          {base + " --points " + q(d / "nan.csv") + " --sun-altitude 30", "nan.csv"},
+          {"irradiance --mesh " + q(d / "cube.obj") + pts + " --sun-altitude 30", "--out"},
+      },
+      d / "out.csv");
 }
 
 // The built-in demo prints its table; the open roof of the tower has sky_ratio 1 (it is an
@@ -234,18 +240,20 @@ BOOST_AUTO_TEST_CASE(times_errors) {
   std::ofstream(d / "alt.csv") << "sun_altitude,sun_azimuth\n95,180\n";
   std::ofstream(d / "time.csv") << "time\n2026-06-21T12:00:00Z\n";
   std::ofstream(d / "empty.csv") << "sun_altitude,sun_azimuth\n";
-  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
-                           q(d / "out.csv") + " --times ";
-  skyband::test::check_bad_input({
-      {base + q(d / "both.csv"), "either a 'time' column"},
-      {base + q(d / "half.csv"), "come together"},
-      {base + q(d / "neg.csv"), "neg.csv:3"},
-      {base + q(d / "alt.csv"), "sun_altitude 95"},
-      {base + q(d / "time.csv"), "--lat and --lon"},
-      {base + q(d / "empty.csv"), "no moments"},
-      {base + q(d / "absent.csv"), "absent.csv"},
-      {base + q(d / "alt.csv") + " --sun-altitude 20", "--times"},
-  }, d / "out.csv");
+  const std::string base =
+      "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "out.csv") + " --times ";
+  skyband::test::check_bad_input(
+      {
+          {base + q(d / "both.csv"), "either a 'time' column"},
+          {base + q(d / "half.csv"), "come together"},
+          {base + q(d / "neg.csv"), "neg.csv:3"},
+          {base + q(d / "alt.csv"), "sun_altitude 95"},
+          {base + q(d / "time.csv"), "--lat and --lon"},
+          {base + q(d / "empty.csv"), "no moments"},
+          {base + q(d / "absent.csv"), "absent.csv"},
+          {base + q(d / "alt.csv") + " --sun-altitude 20", "--times"},
+      },
+      d / "out.csv");
 }
 
 // --weather on a shared EPW file: the cube's open top receives the file's diffuse and direct
@@ -293,8 +301,8 @@ BOOST_AUTO_TEST_CASE(a_year_of_weather, *skyband::test::needs_shared_data()) {
   BOOST_TEST(num(jr[0], "sun_hours") > 30 * 14.0);  // 41.98 N in June: ~15 h of daylight
   BOOST_TEST(num(jr[1], "ground_kWh_m2") > 0.0);
 
-  const auto heino = run_skyband(base + q(shared / "weather" / "NLD_OV_Heino.062780_TMYx.2007-2021.epw") + " --out " +
-                                 q(d / "heino.csv"));
+  const auto heino =
+      run_skyband(base + q(shared / "weather" / "NLD_OV_Heino.062780_TMYx.2007-2021.epw") + " --out " + q(d / "heino.csv"));
   BOOST_TEST_REQUIRE(heino.exit_code == 0, heino.err);
   BOOST_TEST(heino.err.find("earlier than the sun") != std::string::npos, heino.err);
 }
@@ -309,8 +317,10 @@ BOOST_AUTO_TEST_CASE(tmy3_csv_weather_gives_the_epw_result, *skyband::test::need
                                   "top,5,5,10,0,0,1\n"
                                   "southwall,5,0,5,0,-1,0\n";
   const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
-  std::ofstream(d / "chicago.csv") << skyband::test::epw_as_tmy3(chicago.string(), "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n");
-  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --from 03-01 --to 03-03 --weather ";
+  std::ofstream(d / "chicago.csv") << skyband::test::epw_as_tmy3(chicago.string(),
+                                                                 "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n");
+  const std::string base =
+      "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --from 03-01 --to 03-03 --weather ";
   const auto epw = run_skyband(base + q(chicago) + " --out " + q(d / "epw.csv"));
   const auto tmy3 = run_skyband(base + q(d / "chicago.csv") + " --out " + q(d / "tmy3.csv"));
   BOOST_TEST_REQUIRE(epw.exit_code == 0, epw.err);
@@ -330,20 +340,22 @@ BOOST_AUTO_TEST_CASE(bad_weather_input, *skyband::test::needs_shared_data()) {
   std::ofstream(d / "pts.csv") << "x,y,z\n5,5,10\n";
   std::ofstream(d / "short.epw") << "LOCATION,Nowhere,,,,,10,10,0,0\n";
   const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
-  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
-                           q(d / "out.csv");
-  skyband::test::check_bad_input({
-      {base + " --weather " + q(chicago) + " --sun-altitude 30", "--sun-altitude"},
-      {base + " --weather " + q(chicago) + " --albedo 1.5", "--albedo"},
-      {base + " --weather " + q(chicago) + " --from 02-30 --to 03-01", "02-30"},
-      {base + " --weather " + q(chicago) + " --from 02-01", "--to"},
-      {base + " --weather " + q(d / "absent.epw"), "absent.epw"},
-      {base + " --weather " + q(d / "short.epw"), "short.epw"},
-      {base + " --albedo 0.3 --sun-altitude 30", "--weather"},
-      {base + " --weather " + q(chicago) + " --times " + q(d / "pts.csv"), "--times"},
-      {base + " --weather " + q(chicago) + " --sun-at noon", "--sun-at"},
-      {base + " --sun-at end --sun-altitude 30", "--weather"},
-  }, d / "out.csv");
+  const std::string base =
+      "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "out.csv");
+  skyband::test::check_bad_input(
+      {
+          {base + " --weather " + q(chicago) + " --sun-altitude 30", "--sun-altitude"},
+          {base + " --weather " + q(chicago) + " --albedo 1.5", "--albedo"},
+          {base + " --weather " + q(chicago) + " --from 02-30 --to 03-01", "02-30"},
+          {base + " --weather " + q(chicago) + " --from 02-01", "--to"},
+          {base + " --weather " + q(d / "absent.epw"), "absent.epw"},
+          {base + " --weather " + q(d / "short.epw"), "short.epw"},
+          {base + " --albedo 0.3 --sun-altitude 30", "--weather"},
+          {base + " --weather " + q(chicago) + " --times " + q(d / "pts.csv"), "--times"},
+          {base + " --weather " + q(chicago) + " --sun-at noon", "--sun-at"},
+          {base + " --sun-at end --sun-altitude 30", "--weather"},
+      },
+      d / "out.csv");
 }
 
 // A terrain sheet with a material the defaults do not know hides the ground from the facade
@@ -361,7 +373,8 @@ BOOST_AUTO_TEST_CASE(unnamed_terrain_is_reported, *skyband::test::needs_shared_d
                            q(chicago) + " --from 03-01 --to 03-02 --out ";
   const auto unnamed = run_skyband(base + q(d / "a.csv"));
   BOOST_TEST_REQUIRE(unnamed.exit_code == 0, unnamed.err);
-  BOOST_TEST(unnamed.err.find("2 of the 2 points that face the ground see less than 5 % of it") != std::string::npos, unnamed.err);
+  BOOST_TEST(unnamed.err.find("2 of the 2 points that face the ground see less than 5 % of it") != std::string::npos,
+             unnamed.err);
   const auto named = run_skyband(base + q(d / "b.csv") + " --ground-materials meadow");
   BOOST_TEST_REQUIRE(named.exit_code == 0, named.err);
   BOOST_TEST(named.err.find("points that face the ground") == std::string::npos, named.err);
@@ -403,15 +416,17 @@ BOOST_AUTO_TEST_CASE(generated_moments_and_the_sun_only_path) {
   BOOST_TEST(num(a[0], "sun_hours") >= 12.0);  // hourly steps: 12 or 13 moments have the sun up
   BOOST_TEST(num(a[0], "sun_hours") <= 13.0);
   BOOST_TEST(a[0].count("sky_Wh_m2") == 0u);  // the sun-only columns
-  skyband::test::check_bad_input({
-      {base + "--date 2026-03-20 --out " + q(d / "bad.csv"), "--zone"},
-      {base + "--date 2026-03-20 --zone Mars/Olympus --out " + q(d / "bad.csv"), "Mars/Olympus"},
-      {base + "--date 2026-13-01 --zone UTC --out " + q(d / "bad.csv"), "2026-13-01"},
-      {base + "--date 2026-03-20 --zone UTC --step 0 --out " + q(d / "bad.csv"), "--step"},
-      {base + "--step 10 --out " + q(d / "bad.csv"), "--date"},
-      {base + "--sun-only --sun-altitude 30 --out " + q(d / "bad.csv"), "--sun-only"},
-      {base + "--date 2026-03-20 --zone UTC --times " + q(d / "times.csv") + " --out " + q(d / "bad.csv"), "--times"},
-  }, d / "bad.csv");
+  skyband::test::check_bad_input(
+      {
+          {base + "--date 2026-03-20 --out " + q(d / "bad.csv"), "--zone"},
+          {base + "--date 2026-03-20 --zone Mars/Olympus --out " + q(d / "bad.csv"), "Mars/Olympus"},
+          {base + "--date 2026-13-01 --zone UTC --out " + q(d / "bad.csv"), "2026-13-01"},
+          {base + "--date 2026-03-20 --zone UTC --step 0 --out " + q(d / "bad.csv"), "--step"},
+          {base + "--step 10 --out " + q(d / "bad.csv"), "--date"},
+          {base + "--sun-only --sun-altitude 30 --out " + q(d / "bad.csv"), "--sun-only"},
+          {base + "--date 2026-03-20 --zone UTC --times " + q(d / "times.csv") + " --out " + q(d / "bad.csv"), "--times"},
+      },
+      d / "bad.csv");
 }
 
 // --hourly: the NetCDF-4 file holds one series per point and interval; summed over the intervals
@@ -424,9 +439,9 @@ BOOST_AUTO_TEST_CASE(hourly_netcdf, *skyband::test::needs_shared_data()) {
   write_cube(d / "cube.obj");
   std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\ntop,5,5,10,0,0,1\nsouthwall,5,0,5,0,-1,0\n";
   const fs::path chicago = fs::path(SKYBAND_SHARED_DATA) / "weather" / "USA_IL_Chicago-OHare.725300_TMY3.epw";
-  const auto r = run_skyband("irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather " +
-                             q(chicago) + " --from 06-01 --to 06-07 --out " + q(d / "week.csv") + " --hourly " +
-                             q(d / "week.nc"));
+  const auto r =
+      run_skyband("irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather " + q(chicago) +
+                  " --from 06-01 --to 06-07 --out " + q(d / "week.csv") + " --hourly " + q(d / "week.nc"));
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST(!fs::exists(d / "week.nc.partial"));
   int nc = -1;
@@ -478,20 +493,24 @@ BOOST_AUTO_TEST_CASE(times_file_bounds_and_sun_errors_name_the_line) {
   std::ofstream(d / "az.csv") << "sun_altitude,sun_azimuth\n30,180\n30,1e308\n";
   std::ofstream(d / "year.csv") << "time\n2026-06-21T12:00:00Z\n9999-06-21T12:00:00Z\n";
   std::ofstream(d / "nul.csv", std::ios::binary) << std::string("time\n2026-06-21T12:00\0:00Z\n", 27);
-  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
-                           q(d / "out.csv") + " --times ";
-  skyband::test::check_bad_input({
-      {base + q(d / "huge.csv"), "huge.csv:2: hours 1e+308 must be in [0, 8784]"},
-      {base + q(d / "over.csv"), "over.csv:2: hours 8784.5"},
-      {base + q(d / "az.csv"), "az.csv:3: sun_azimuth 1e+308 must be in [-360, 360]"},
-      {base + q(d / "year.csv") + " --lat 52 --lon 4", "year.csv:3: column 'time': value '9999-06-21T12:00:00Z': sun position: year = 9999"},
-      {base + q(d / "nul.csv") + " --lat 52 --lon 4", "nul.csv:2: column 'time': value '2026-06-21T12:00\\x00:00Z'"},
-  }, d / "out.csv");
+  const std::string base =
+      "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "out.csv") + " --times ";
+  skyband::test::check_bad_input(
+      {
+          {base + q(d / "huge.csv"), "huge.csv:2: hours 1e+308 must be in [0, 8784]"},
+          {base + q(d / "over.csv"), "over.csv:2: hours 8784.5"},
+          {base + q(d / "az.csv"), "az.csv:3: sun_azimuth 1e+308 must be in [-360, 360]"},
+          {base + q(d / "year.csv") + " --lat 52 --lon 4",
+           "year.csv:3: column 'time': value '9999-06-21T12:00:00Z': sun position: year = 9999"},
+          {base + q(d / "nul.csv") + " --lat 52 --lon 4", "nul.csv:2: column 'time': value '2026-06-21T12:00\\x00:00Z'"},
+      },
+      d / "out.csv");
   // The bounds are inclusive and the azimuth is taken modulo 360 (as --sun-azimuth and the scene
   // file do): a row of 8784 h at azimuth -90 gives the output of one at 270, bit for bit.
   std::ofstream(d / "west_neg.csv") << "sun_altitude,sun_azimuth,hours\n30,-90,8784\n";
   std::ofstream(d / "west_pos.csv") << "sun_altitude,sun_azimuth,hours\n30,270,8784\n";
-  const std::string ok = "irradiance --quiet --sun-only --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --times ";
+  const std::string ok =
+      "irradiance --quiet --sun-only --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --times ";
   const auto neg = run_skyband(ok + q(d / "west_neg.csv") + " --out " + q(d / "neg.csv"));
   const auto pos = run_skyband(ok + q(d / "west_pos.csv") + " --out " + q(d / "pos.csv"));
   BOOST_TEST_REQUIRE(neg.exit_code == 0, neg.err);

@@ -17,7 +17,6 @@
 #include "io/geo_raster.h"
 #include "io/png_writer.h"
 #include "shared_data.h"
-#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using skyband::test::run_skyband;
@@ -25,7 +24,9 @@ using skyband::test::slurp;
 
 namespace {
 
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
 
 // The last two comma-separated values of each data row of a CSV: (svf, sky_exposure).
 std::vector<std::pair<double, double>> last_two_columns(const fs::path& csv) {
@@ -63,9 +64,11 @@ BOOST_AUTO_TEST_CASE(dsm_block_matches_svf_on_a_box_mesh) {
     std::ofstream pts(d / "pts.csv");
     pts << "x,y,z\n";
     for (int r = 0; r < 20; ++r)
-      for (int c = 0; c < 20; ++c) pts << c + 0.5 << ',' << 19.5 - r << ',' << (r >= 8 && r < 12 && c >= 8 && c < 12 ? 6 : 0) << '\n';
+      for (int c = 0; c < 20; ++c)
+        pts << c + 0.5 << ',' << 19.5 - r << ',' << (r >= 8 && r < 12 && c >= 8 && c < 12 ? 6 : 0) << '\n';
   }
-  auto r = run_skyband("map --dsm " + q(d / "dsm.asc") + " --crs EPSG:28992 --out " + q(d / "m.tif") + " --png " + q(d / "m.png"));
+  auto r =
+      run_skyband("map --dsm " + q(d / "dsm.asc") + " --crs EPSG:28992 --out " + q(d / "m.tif") + " --png " + q(d / "m.png"));
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST(r.err.find("400 points exact by the horizon") != std::string::npos, r.err);
   r = run_skyband("svf --mesh " + q(d / "box.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "s.csv") + " --quiet");
@@ -79,10 +82,11 @@ BOOST_AUTO_TEST_CASE(dsm_block_matches_svf_on_a_box_mesh) {
   BOOST_TEST_REQUIRE(svf.size() == 400u);
   double lowest = 1;
   for (std::size_t i = 0; i < 400; ++i) {
-    BOOST_TEST(std::abs(m.values[i] - svf[i].first) < kFloat32, "pixel " << i << ": map " << m.values[i] << " svf " << svf[i].first);
+    BOOST_TEST(std::abs(m.values[i] - svf[i].first) < kFloat32,
+               "pixel " << i << ": map " << m.values[i] << " svf " << svf[i].first);
     lowest = std::min(lowest, m.values[i]);
   }
-  BOOST_TEST(lowest < 0.7);  // the pixels at the block's foot see it
+  BOOST_TEST(lowest < 0.7);                 // the pixels at the block's foot see it
   BOOST_TEST(m.values[9 * 20 + 9] == 1.0);  // on the block's top: the open sky
   // --quantity sky_exposure on the same raster.
   r = run_skyband("map --dsm " + q(d / "dsm.asc") + " --quantity sky_exposure --out " + q(d / "e.tif") + " --quiet");

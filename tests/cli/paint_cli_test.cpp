@@ -23,7 +23,9 @@ using skyband::test::slurp;
 
 namespace {
 
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
 
 struct PlyFaces {
   std::size_t vertices = 0;

@@ -26,7 +26,9 @@ using skyband::test::run_skyband;
 using skyband::test::slurp;
 
 namespace {
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
 }  // namespace
 
 // The 10 m cube (no ground material: it stands on the plane z = 0) on a 2 m grid over
@@ -65,16 +67,18 @@ BOOST_AUTO_TEST_CASE(grid_errors) {
   const fs::path d = skyband::test::test_folder("points_cli_errors");
   skyband::test::write_cube_obj(d / "cube.obj");
   const std::string mesh = "points grid --mesh " + q(d / "cube.obj");
-  skyband::test::check_bad_input({
-      {mesh + " --out " + q(d / "g.csv"), "--spacing"},
-      {mesh + " --spacing 1", "--out"},
-      {mesh + " --spacing -2 --out " + q(d / "g.csv"), "--spacing"},
-      {mesh + " --spacing 1 --height -3 --out " + q(d / "g.csv"), "--height -3"},
-      {mesh + " --spacing 1 --bounds 1,2,3 --out " + q(d / "g.csv"), "--bounds"},
-      {mesh + " --spacing 0.0001 --out " + q(d / "g.csv"), "grid nodes over the area"},
-      {mesh + " --spacing 1 --out " + q(d / "missing" / "g.csv"), "missing"},
-      {"points grid --mesh " + q(d / "absent.obj") + " --spacing 1 --out " + q(d / "g.csv"), "absent.obj"},
-  }, d / "g.csv");
+  skyband::test::check_bad_input(
+      {
+          {mesh + " --out " + q(d / "g.csv"), "--spacing"},
+          {mesh + " --spacing 1", "--out"},
+          {mesh + " --spacing -2 --out " + q(d / "g.csv"), "--spacing"},
+          {mesh + " --spacing 1 --height -3 --out " + q(d / "g.csv"), "--height -3"},
+          {mesh + " --spacing 1 --bounds 1,2,3 --out " + q(d / "g.csv"), "--bounds"},
+          {mesh + " --spacing 0.0001 --out " + q(d / "g.csv"), "grid nodes over the area"},
+          {mesh + " --spacing 1 --out " + q(d / "missing" / "g.csv"), "missing"},
+          {"points grid --mesh " + q(d / "absent.obj") + " --spacing 1 --out " + q(d / "g.csv"), "absent.obj"},
+      },
+      d / "g.csv");
 }
 
 // ---- skyband points facades ---------------------------------------------------------------
@@ -173,11 +177,10 @@ bool ray_hits(const skyband::Vec3& o, const skyband::Vec3& d, const std::array<s
 }
 
 std::size_t points_inside_solids(const std::vector<FacadeRow>& rows, const Solids& s) {
-  const std::array<skyband::Vec3, 5> dirs = {skyband::Vec3(0.5377, 0.8271, 0.1637).normalized(),
-                                             skyband::Vec3(-0.7193, 0.2417, -0.3119).normalized(),
-                                             skyband::Vec3(0.1291, -0.6733, 0.4422).normalized(),
-                                             skyband::Vec3(-0.9811, -0.1932, 0).normalized(),
-                                             skyband::Vec3(0.2213, -0.9752, 0).normalized()};
+  const std::array<skyband::Vec3, 5> dirs = {
+      skyband::Vec3(0.5377, 0.8271, 0.1637).normalized(), skyband::Vec3(-0.7193, 0.2417, -0.3119).normalized(),
+      skyband::Vec3(0.1291, -0.6733, 0.4422).normalized(), skyband::Vec3(-0.9811, -0.1932, 0).normalized(),
+      skyband::Vec3(0.2213, -0.9752, 0).normalized()};
   std::size_t inside = 0;
   for (const FacadeRow& r : rows)
     for (std::size_t g = 0; g < s.triangles.size(); ++g) {
@@ -255,14 +258,13 @@ BOOST_AUTO_TEST_CASE(facades_of_a_cube) {
 // modelled once per building), the Delft tile (CityJSON LoD1 solids, no semantics: walls by
 // the normal) and the Rotterdam CityJSON subset (objects, semantic walls):
 // every point 0.1 m in front of its own face with its foot in it, no point inside any
-// building (independent parity, per building even where skyband only sees components), walls' normals within 30° of horizontal (by the normal, OBJ) or
-// exactly horizontal (the CityJSON walls are vertical), and the CSV's row count the
-// one printed.
+// building (independent parity, per building even where skyband only sees components), walls' normals within 30° of horizontal
+// (by the normal, OBJ) or exactly horizontal (the CityJSON walls are vertical), and the CSV's row count the one printed.
 BOOST_AUTO_TEST_CASE(facades_of_real_city_models, *skyband::test::needs_shared_data()) {
   const fs::path d = skyband::test::test_folder("points_cli_facades_real");
   const fs::path shared(SKYBAND_SHARED_DATA);
-  for (const fs::path& model : {shared / "buildings" / "rotterdam_delfshaven_blockA_lod2.obj", shared / "cityjson" / "delft.city.json",
-                               shared / "cityjson" / "rotterdam_subset.city.json"}) {
+  for (const fs::path& model : {shared / "buildings" / "rotterdam_delfshaven_blockA_lod2.obj",
+                                shared / "cityjson" / "delft.city.json", shared / "cityjson" / "rotterdam_subset.city.json"}) {
     const fs::path out = d / (model.stem().string() + ".csv");
     const auto r = run_skyband("points facades --mesh " + q(model) + " --spacing 1 --out " + q(out) + " --quiet");
     BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
@@ -292,21 +294,23 @@ BOOST_AUTO_TEST_CASE(facades_errors) {
   skyband::test::write_cube_obj(d / "cube.obj");
   const std::string mesh = "points facades --mesh " + q(d / "cube.obj");
   const std::string out = " --out " + q(d / "f.csv");
-  skyband::test::check_bad_input({
-      {mesh + out, "--spacing"},
-      {mesh + " --spacing 1", "--out"},
-      {mesh + " --spacing -2" + out, "--spacing -2"},
-      {mesh + " --spacing 0" + out, "--spacing"},
-      {mesh + " --spacing nan" + out, "--spacing nan"},
-      {mesh + " --spacing 1 --offset 0" + out, "--offset 0"},
-      {mesh + " --spacing 1 --offset -0.1" + out, "--offset -0.1"},
-      {mesh + " --spacing 1 --offset inf" + out, "--offset"},
-      {mesh + " --spacing 1 --surfaces wall,door" + out, "--surfaces door"},
-      {mesh + " --spacing 1 --threads -1" + out, "--threads -1"},
-      {mesh + " --spacing 0.0001" + out, "grid cells over the model's faces"},
-      {mesh + " --spacing 1 --out " + q(d / "missing" / "f.csv"), "missing"},
-      {"points facades --mesh " + q(d / "absent.obj") + " --spacing 1" + out, "absent.obj"},
-  }, d / "f.csv");
+  skyband::test::check_bad_input(
+      {
+          {mesh + out, "--spacing"},
+          {mesh + " --spacing 1", "--out"},
+          {mesh + " --spacing -2" + out, "--spacing -2"},
+          {mesh + " --spacing 0" + out, "--spacing"},
+          {mesh + " --spacing nan" + out, "--spacing nan"},
+          {mesh + " --spacing 1 --offset 0" + out, "--offset 0"},
+          {mesh + " --spacing 1 --offset -0.1" + out, "--offset -0.1"},
+          {mesh + " --spacing 1 --offset inf" + out, "--offset"},
+          {mesh + " --spacing 1 --surfaces wall,door" + out, "--surfaces door"},
+          {mesh + " --spacing 1 --threads -1" + out, "--threads -1"},
+          {mesh + " --spacing 0.0001" + out, "grid cells over the model's faces"},
+          {mesh + " --spacing 1 --out " + q(d / "missing" / "f.csv"), "missing"},
+          {"points facades --mesh " + q(d / "absent.obj") + " --spacing 1" + out, "absent.obj"},
+      },
+      d / "f.csv");
 }
 
 // The same CSV whatever the thread count (faces in chunks, joined in order), on the shared

@@ -10,8 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "cli/support/cli_runner.h"
@@ -31,7 +31,9 @@ fs::path work_dir() {
   return d;
 }
 
-CliResult run(const std::string& args) { return test::run_skyband(args); }
+CliResult run(const std::string& args) {
+  return test::run_skyband(args);
+}
 
 // The committed default scene.
 const std::string kScene = std::string(SKYBAND_EXAMPLES_DIR) + "/scenes/default.toml";
@@ -66,7 +68,9 @@ BOOST_AUTO_TEST_CASE(renders_default_scene_to_exr_and_png) {
 BOOST_AUTO_TEST_CASE(overrides_change_the_image) {
   const fs::path a = work_dir() / "sun50.exr", b = work_dir() / "sun8.exr";
   BOOST_REQUIRE(run("render --quiet --scene '" + kScene + "' --out '" + a.string() + "'" + kTiny).exit_code == 0);
-  BOOST_REQUIRE(run("render --quiet --scene '" + kScene + "' --out '" + b.string() + "'" + kTiny + " --set sun.altitude_deg=8").exit_code == 0);
+  BOOST_REQUIRE(
+      run("render --quiet --scene '" + kScene + "' --out '" + b.string() + "'" + kTiny + " --set sun.altitude_deg=8").exit_code ==
+      0);
   const ExrImage ia = read_exr_layers(a), ib = read_exr_layers(b);
   BOOST_TEST(ib.attributes.at("skyband_sun").find("altitude 8.0000") != std::string::npos);
   BOOST_TEST((ia.layers.back().rgb != ib.layers.back().rgb));
@@ -118,7 +122,8 @@ BOOST_AUTO_TEST_CASE(fuzz_found_scene_inputs_exit_2_naming_file_and_key, *skyban
     std::string args, expect;
   };
   const Case cases[] = {
-      {"render --scene " + test::shell_quote(found / "scene_unicode_2bytes.toml") + to, "scene_unicode_2bytes.toml:1:1: character"},
+      {"render --scene " + test::shell_quote(found / "scene_unicode_2bytes.toml") + to,
+       "scene_unicode_2bytes.toml:1:1: character"},
       {"render --scene " + test::shell_quote(found / "scene_array_small_float_in_error_message.toml") + to,
        "scene_array_small_float_in_error_message.toml:1:10: meshes = [0.01]: every entry must be a non-empty path string"},
       {"render --scene " + test::shell_quote(found / "scene_mesh_name_too_long.toml") + to, "File name too long"},

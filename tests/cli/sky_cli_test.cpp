@@ -30,7 +30,9 @@ fs::path work_dir() {
   return d;
 }
 
-CliResult run(const std::string& args) { return skyband::test::run_skyband("sky " + args); }
+CliResult run(const std::string& args) {
+  return skyband::test::run_skyband("sky " + args);
+}
 
 json run_json(const std::string& args) {
   const RunResult r = run(args + " --json");
@@ -54,7 +56,8 @@ BOOST_AUTO_TEST_CASE(json_has_the_required_keys) {
   BOOST_TEST(j["sun"]["spectrum"]["wavelength_nm"].size() == 41u);
   BOOST_TEST(j["sun"]["spectrum"]["direct_normal_W_m2_nm"].size() == 41u);
   BOOST_TEST(j["sun"]["chromaticity_xy"].size() == 2u);
-  for (const char* k : {"horizontal_diffuse_irradiance_W_m2", "horizontal_diffuse_illuminance_lx", "zenith"}) BOOST_TEST(j.at("sky").contains(k), k);
+  for (const char* k : {"horizontal_diffuse_irradiance_W_m2", "horizontal_diffuse_illuminance_lx", "zenith"})
+    BOOST_TEST(j.at("sky").contains(k), k);
   BOOST_TEST(j["sky"]["zenith"].contains("luminance_cd_m2"));
   BOOST_TEST(j["sky"]["zenith"]["chromaticity_xy"].size() == 2u);
   for (const char* k : {"400", "550", "700"}) BOOST_TEST(j["atmosphere"]["rayleigh_optical_depth"].contains(k), k);
@@ -69,8 +72,9 @@ BOOST_AUTO_TEST_CASE(json_values_are_consistent) {
   // The broadband value is the trapezoid of the printed spectrum (independent recomputation;
   // the JSON prints doubles with round-trip precision → 1e-12).
   const json& sp = j["sun"]["spectrum"];
-  BOOST_TEST(j["sun"]["direct_normal_irradiance_W_m2"].get<double>() == trapezoid(sp["wavelength_nm"], sp["direct_normal_W_m2_nm"]),
-             tt::tolerance(1e-12));
+  BOOST_TEST(
+      j["sun"]["direct_normal_irradiance_W_m2"].get<double>() == trapezoid(sp["wavelength_nm"], sp["direct_normal_W_m2_nm"]),
+      tt::tolerance(1e-12));
   // Rayleigh optical depth at sea level, 550 nm: 0.0968 (Bucholtz 1995, reference-notes §2.3
   // table, 4 digits) → 0.1% plus the atmosphere's own fitting (1%).
   BOOST_TEST(j["atmosphere"]["rayleigh_optical_depth"]["550"].get<double>() == 0.0968, tt::tolerance(0.01));
@@ -213,7 +217,8 @@ BOOST_AUTO_TEST_CASE(fisheye_of_a_point_in_a_model) {
   const skyband::PngImage png = skyband::read_png_rgb8(d / "ground.png");
   BOOST_TEST_REQUIRE(png.width == 128);
   std::size_t red = 0;
-  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) red += png.rgb[i] == 230 && png.rgb[i + 1] == 30 && png.rgb[i + 2] == 30;
+  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3)
+    red += png.rgb[i] == 230 && png.rgb[i + 1] == 30 && png.rgb[i + 2] == 30;
   BOOST_TEST(red > 20u);
   BOOST_TEST(fs::exists(d / "ground.exr"));
   // Errors name the option.
@@ -237,7 +242,8 @@ BOOST_AUTO_TEST_CASE(fisheye_of_a_point_in_a_model) {
 BOOST_AUTO_TEST_CASE(sun_path_on_a_point_fisheye) {
   const fs::path d = work_dir();
   skyband::test::write_cube_obj(d / "cube.obj");
-  const std::string common = " --mesh '" + (d / "cube.obj").string() + "' --size 256 --lat 0 --lon 0 --time 2026-03-20T12:00Z --sun-path";
+  const std::string common =
+      " --mesh '" + (d / "cube.obj").string() + "' --size 256 --lat 0 --lon 0 --time 2026-03-20T12:00Z --sun-path";
   json j = run_json("--at 5,5,10 --out '" + (d / "path_roof.exr").string() + "'" + common);
   const std::size_t up = j["point"]["sun_path"]["marks_above_horizon"].get<std::size_t>();
   BOOST_TEST(up >= 72u);
@@ -251,7 +257,8 @@ BOOST_AUTO_TEST_CASE(sun_path_on_a_point_fisheye) {
   BOOST_TEST(seen + 30 > up);
   const skyband::PngImage png = skyband::read_png_rgb8(d / "path_west.png");
   std::size_t hidden = 0;
-  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) hidden += png.rgb[i] == 150 && png.rgb[i + 1] == 80 && png.rgb[i + 2] == 0;
+  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3)
+    hidden += png.rgb[i] == 150 && png.rgb[i + 1] == 80 && png.rgb[i + 2] == 0;
   BOOST_TEST(hidden > 20u);
   const RunResult r = run("--sun-path --lat 0 --lon 0 --time 2026-03-20T12:00Z --out '" + (d / "x.exr").string() + "'");
   BOOST_TEST(r.exit_code == 2, r.err);

@@ -19,8 +19,12 @@ using skyband::test::run_skyband;
 
 namespace {
 
-std::string q(const fs::path& p) { return skyband::test::shell_quote(p); }
-void write_cube(const fs::path& file) { skyband::test::write_cube_obj(file); }
+std::string q(const fs::path& p) {
+  return skyband::test::shell_quote(p);
+}
+void write_cube(const fs::path& file) {
+  skyband::test::write_cube_obj(file);
+}
 using skyband::test::slurp;
 
 }  // namespace
@@ -37,8 +41,8 @@ BOOST_AUTO_TEST_CASE(end_to_end_values_and_pass_through) {
                                   "b,5,5,5,0,0,1,inside\n"
                                   "c,500,500,0,0,0,1,far\n"
                                   "d,-20,5,3,-1,0,0,wall facing west\n";
-  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " +
-                             q(d / "out.csv") + " --threads 2");
+  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "out.csv") +
+                             " --threads 2");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   std::istringstream out(slurp(d / "out.csv"));
   std::string line;
@@ -100,20 +104,22 @@ BOOST_AUTO_TEST_CASE(bad_input_errors) {
   std::ofstream(d / "nan.obj") << "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(d / "badindex.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
   const std::string out = " --out " + q(d / "out.csv");
-  skyband::test::check_bad_input({
-      {"svf --mesh " + q(d / "missing.obj") + " --points " + q(d / "ok.csv") + out, "missing.obj"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "absent.csv") + out, "absent.csv"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "badnum.csv") + out, "five"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "zero_normal.csv") + out, "zero_normal.csv"},
-      {"svf --mesh " + q(d / "nan.obj") + " --points " + q(d / "ok.csv") + out, "nan.obj"},
-      {"svf --mesh " + q(d / "badindex.obj") + " --points " + q(d / "ok.csv") + out, "7"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --bands 0", "--bands"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --tolerance -1", "--tolerance"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --method best", "--method"},
-      {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
-       "no_such_dir"},
-  }, d / "out.csv");
+  skyband::test::check_bad_input(
+      {
+          {"svf --mesh " + q(d / "missing.obj") + " --points " + q(d / "ok.csv") + out, "missing.obj"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "absent.csv") + out, "absent.csv"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "badnum.csv") + out, "five"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "zero_normal.csv") + out, "zero_normal.csv"},
+          {"svf --mesh " + q(d / "nan.obj") + " --points " + q(d / "ok.csv") + out, "nan.obj"},
+          {"svf --mesh " + q(d / "badindex.obj") + " --points " + q(d / "ok.csv") + out, "7"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --bands 0", "--bands"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --tolerance -1", "--tolerance"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --threads -3", "--threads"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + out + " --method best", "--method"},
+          {"svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "ok.csv") + " --out " + q(d / "no_such_dir" / "o.csv"),
+           "no_such_dir"},
+      },
+      d / "out.csv");
 }
 
 // The default method reports which points it computed exactly: the cube on no ground is a column
@@ -125,7 +131,10 @@ BOOST_AUTO_TEST_CASE(method_summary_on_stderr) {
   std::ofstream(d / "pts.csv") << "x,y,z\n15,5,0\n5,5,5\n";
   const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"));
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
-  BOOST_TEST(r.err.find("1 point exact by the horizon of closed buildings, 1 point exact by the union of the occluders' projections") != std::string::npos, r.err);
+  BOOST_TEST(
+      r.err.find("1 point exact by the horizon of closed buildings, 1 point exact by the union of the occluders' projections") !=
+          std::string::npos,
+      r.err);
   const std::string text = slurp(d / "o.csv");
   BOOST_TEST(text.substr(text.rfind('\n', text.size() - 2) + 1) == "5,5,5,0,0\n");  // inside: nothing seen
 }
@@ -141,7 +150,8 @@ BOOST_AUTO_TEST_CASE(demo_runs) {
 // --horizon: the rows of every point's profile in input order; beside the 10 m cube at (15, 5, 0)
 // the cube's east face at x = 10, 5 m away and 10 m high, makes the horizon
 // atan((10 − 1e-6)/5) = 63.434947° due west (azimuth 270°, clockwise from north; the point is
-// evaluated 1 µm above the ground), and nothing stands east (90°): 0°. Inside the cube the profile is 90° all round. A bad step is an error before any work.
+// evaluated 1 µm above the ground), and nothing stands east (90°): 0°. Inside the cube the profile is 90° all round. A bad step
+// is an error before any work.
 BOOST_AUTO_TEST_CASE(horizon_profiles) {
   const fs::path d = skyband::test::test_folder("svf_cli_horizon");
   write_cube(d / "cube.obj");
@@ -171,7 +181,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::size_t count_of(const std::string& s, char c) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), c)); }
+std::size_t count_of(const std::string& s, char c) {
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), c));
+}
 
 }  // namespace
 
@@ -185,14 +197,15 @@ BOOST_AUTO_TEST_CASE(fuzz_found_meshes_end_at_once, *skyband::test::needs_shared
   const fs::path d = skyband::test::test_folder("svf_cli_fuzz_found");
   std::ofstream(d / "pts.csv") << "x,y,z\n0.2,0.2,5\n";
   const std::vector<std::pair<std::string, int>> cases{
-      {"off_comment_after_header.off", 0}, {"off_face_extra_value_minus1.off", 0}, {"off_face_loop_oom.off", 0},
+      {"off_comment_after_header.off", 0}, {"off_face_extra_value_minus1.off", 0},  {"off_face_loop_oom.off", 0},
       {"ply_empty_element.ply", 2},        {"ply_empty_element_huge_count.ply", 0}, {"ply_three_empty_elements.ply", 0},
   };
   for (const auto& [file, exit_code] : cases) {
     BOOST_TEST_CONTEXT(file) {
       const fs::path out = d / (file + ".csv");
       const auto t0 = std::chrono::steady_clock::now();
-      const auto r = run_skyband("svf --quiet --mesh " + q(kFuzzFound / file) + " --points " + q(d / "pts.csv") + " --out " + q(out));
+      const auto r =
+          run_skyband("svf --quiet --mesh " + q(kFuzzFound / file) + " --points " + q(d / "pts.csv") + " --out " + q(out));
       BOOST_TEST(seconds_since(t0) < 10.0);
       BOOST_TEST(r.exit_code == exit_code, r.err);
       if (exit_code == 0) {
@@ -215,7 +228,8 @@ BOOST_AUTO_TEST_CASE(fuzz_found_points_keep_their_first_column_name, *skyband::t
   write_cube(d / "cube.obj");
   for (const char* file : {"points_roundtrip_double_bom.csv", "points_roundtrip_bom_after_blank_line.csv"}) {
     const fs::path out = d / (std::string(file) + ".out.csv");
-    const auto r = run_skyband("svf --quiet --mesh " + q(d / "cube.obj") + " --points " + q(kFuzzFound / file) + " --out " + q(out));
+    const auto r =
+        run_skyband("svf --quiet --mesh " + q(d / "cube.obj") + " --points " + q(kFuzzFound / file) + " --out " + q(out));
     BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
     BOOST_TEST(slurp(out).starts_with("\"\xEF\xBB\xBFid\",x,y,z,svf,sky_exposure\na,0,0,1,"), file);
   }
@@ -279,16 +293,17 @@ BOOST_AUTO_TEST_CASE(point_sanity_warnings_and_offset) {
     f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
   }
   std::ofstream(d / "pts.csv") << "x,y,z,nx,ny,nz\n"
-                                  "4.36,52.01,1,0,0,1\n"          // line 2: degrees
-                                  "446005,85005,1,0,0,1\n"        // line 3: swapped
-                                  "95000,446000,1,0,0,1\n"        // line 4: far away
-                                  "85009.9999,446005,5,1,0,0\n"   // line 5: behind the east wall
-                                  "85005,446005,10.5,0,0,1\n";    // line 6: above the roof, fine
+                                  "4.36,52.01,1,0,0,1\n"         // line 2: degrees
+                                  "446005,85005,1,0,0,1\n"       // line 3: swapped
+                                  "95000,446000,1,0,0,1\n"       // line 4: far away
+                                  "85009.9999,446005,5,1,0,0\n"  // line 5: behind the east wall
+                                  "85005,446005,10.5,0,0,1\n";   // line 6: above the roof, fine
   const std::string cmd = "svf --mesh " + q(d / "cube_rd.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv");
   auto r = run_skyband(cmd + " --quiet");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST(r.err.find("1 point of " + (d / "pts.csv").string() + " (line 2): coordinates like longitude/latitude") !=
-                 std::string::npos, r.err);
+                 std::string::npos,
+             r.err);
   BOOST_TEST(r.err.find("(line 3): inside the model only with x and y swapped") != std::string::npos, r.err);
   BOOST_TEST(r.err.find("(line 4): far outside the model's box") != std::string::npos, r.err);
   BOOST_TEST(r.err.find("(line 5): a surface less than 1 cm in front along the normal") != std::string::npos, r.err);
@@ -375,7 +390,8 @@ BOOST_AUTO_TEST_CASE(points_on_their_wall_get_no_warning) {
   const fs::path d = skyband::test::test_folder("svf_cli_on_wall");
   write_cube(d / "cube.obj");
   std::ofstream(d / "p.csv") << "x,y,z,nx,ny,nz\n10,5,5,1,0,0\n5,0,3,0,-1,0\n";
-  const auto r = run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv") + " --quiet");
+  const auto r =
+      run_skyband("svf --mesh " + q(d / "cube.obj") + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv") + " --quiet");
   BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
   BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
 }

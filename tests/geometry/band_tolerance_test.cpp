@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/real_mesh_points.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"
 
@@ -54,11 +54,13 @@ BOOST_AUTO_TEST_CASE(low_skyline_beyond_the_edge_of_a_city_and_its_facades) {
 }
 
 BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile, *skyband::test::needs_shared_data()) {
-  const TriangleSoup soup = read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj");
+  const TriangleSoup soup =
+      read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj");
   const Scene scene(soup);
   std::vector<QueryPoint> pts = {{Vec3(84818.397554, 447648.962315, -0.42), Vec3(0, 0, 1)}};
   for (const QueryPoint& q : gen::real_mesh_points(scene, 16, 7)) pts.push_back(q);
-  const SkyFactorsRun exact = compute_sky_factors(scene, std::span(pts).first(1), VisibilityOptions{}, SkyFactorsMethod::exact, 1);
+  const SkyFactorsRun exact =
+      compute_sky_factors(scene, std::span(pts).first(1), VisibilityOptions{}, SkyFactorsMethod::exact, 1);
   BOOST_TEST(std::abs(exact.factors[0].svf - 0.99790) < 1e-4);
   BOOST_TEST(std::abs(exact.factors[0].sky_exposure - 0.97433) < 1e-4);
   check_tolerance(scene, pts, "Delft tile");

@@ -12,7 +12,6 @@ using namespace skyband;
 
 namespace {
 
-
 double svf_at(const Scene& scene, const Vec3& p, const Vec3& n, VisibilityOptions opt = {}) {
   BandVisibility bv(scene, opt);
   VisibilityCache cache;
@@ -52,15 +51,14 @@ BOOST_AUTO_TEST_CASE(closed_box_inside_and_on_top) {
     // On a vertex and on an edge of the box, facing into it: evaluated 1 µm inside
     // (surface_offset_m), where every sample plane passes through the box's corner or along its
     // edge — still no gap between the faces meeting there.
-    BOOST_TEST(svf_at(scene, Vec3(0, 0, 0), Vec3(1, 1, 1), opt) == 0.0);  // bottom vertex
-    BOOST_TEST(svf_at(scene, Vec3(2, 0, 1), Vec3(0, 1, 0), opt) == 0.0);  // on the face y = 0
+    BOOST_TEST(svf_at(scene, Vec3(0, 0, 0), Vec3(1, 1, 1), opt) == 0.0);    // bottom vertex
+    BOOST_TEST(svf_at(scene, Vec3(2, 0, 1), Vec3(0, 1, 0), opt) == 0.0);    // on the face y = 0
     BOOST_TEST(svf_at(scene, Vec3(4, 3, 1), Vec3(-1, -1, 0), opt) == 0.0);  // vertical edge
     // The same vertex and edge facing out of the box: the box then lies wholly behind the face's
     // plane, so the point sees the open sky of its tilt, (1 + cos θ)/2 (method.md §8):
     // cos θ = 1/√3 at the top vertex facing (1, 1, 1), 0 on the vertical edge facing (1, 1, 0).
     // Only float storage of interval ends and band edges rounds, as in open_sky_tilted_faces.
-    BOOST_TEST(svf_at(scene, Vec3(4, 3, 2), Vec3(1, 1, 1), opt) == 0.5 * (1 + 1 / std::sqrt(3.0)),
-               tt::tolerance(1e-6));
+    BOOST_TEST(svf_at(scene, Vec3(4, 3, 2), Vec3(1, 1, 1), opt) == 0.5 * (1 + 1 / std::sqrt(3.0)), tt::tolerance(1e-6));
     BOOST_TEST(svf_at(scene, Vec3(4, 3, 1), Vec3(1, 1, 0), opt) == 0.5, tt::tolerance(1e-6));
     BOOST_TEST(svf_at(scene, Vec3(1.3, 1.1, 2.0), Vec3(0, 0, 1), opt) == 1.0, tt::tolerance(1e-12));
     BOOST_TEST(svf_at(scene, Vec3(2.0, 1.5, 2.0), Vec3(0, 0, 1), opt) == 1.0, tt::tolerance(1e-12));
@@ -106,8 +104,7 @@ BOOST_AUTO_TEST_CASE(naive_equals_accelerated) {
     naive.accelerate = false;
     BandVisibility a(scene, fast), b(scene, naive);
     for (int i = 0; i < 20; ++i) {
-      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5},
-                         Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
+      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5}, Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
       VisibilityCache::PointResult ra, rb;
       a.compute(q, ra);
       b.compute(q, rb);
@@ -145,8 +142,7 @@ BOOST_AUTO_TEST_CASE(shadow_test_equals_full_line) {
     naive.accelerate = false;
     BandVisibility a(scene, fast), b(scene, naive);
     for (int i = 0; i < 150; ++i) {
-      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5},
-                         Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
+      const QueryPoint q{Vec3{u(rng) * 100, u(rng) * 100, u(rng) * 5}, Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng)}.normalized()};
       Vec3 dir = i % 2 ? Vec3{u(rng) - 0.5, u(rng) - 0.5, 0.05 + u(rng)}.normalized()
                        : (corners[i % corners.size()] - q.position).normalized();
       if (dir.dot(q.normal) <= 0) dir = -dir;

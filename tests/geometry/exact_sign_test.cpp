@@ -93,7 +93,8 @@ BOOST_AUTO_TEST_CASE(orient2d_filter_agrees_with_exact) {
       c = ae + 2.0 * step;
     }
     const Vec3 a2 = ae, b2 = be;
-    const int lifted = -exact_orientation_slow(Vec3(a2.x(), a2.y(), 0), Vec3(b2.x(), b2.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
+    const int lifted =
+        -exact_orientation_slow(Vec3(a2.x(), a2.y(), 0), Vec3(b2.x(), b2.y(), 0), Vec3(c.x(), c.y(), 0), Vec3(0, 0, 1));
     BOOST_TEST(exact_orient2d_sign(a2, b2, c) == lifted);
     zeros += lifted == 0;
   }

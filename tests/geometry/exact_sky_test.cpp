@@ -19,12 +19,12 @@
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"
-#include "geometry/exact/exact_sky.h"
-#include "geometry/core/input_error.h"
 #include "geometry/bands/sky_integral.h"
-#include "geometry/visibility/sky_visibility.h"
+#include "geometry/core/input_error.h"
+#include "geometry/exact/exact_sky.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_visibility.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"
 
@@ -40,7 +40,9 @@ namespace {
 constexpr double kExact = 1e-9;
 constexpr double kOffset = 1e-6;  // VisibilityOptions::surface_offset_m
 
-Vec3 unit_normal(double tilt, double az) { return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)); }
+Vec3 unit_normal(double tilt, double az) {
+  return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt));
+}
 
 void add_triangle(TriangleSoup& s, const Vec3& a, const Vec3& b, const Vec3& c) {
   const auto base = std::uint32_t(s.vertices.size());
@@ -139,7 +141,8 @@ BOOST_AUTO_TEST_CASE(open_bottom_boxes_on_a_ground_with_shared_walls_and_t_junct
       const double w = rng.uniform(3, 6), height = rng.uniform(4, 12);
       TriangleSoup house;
       add_open_box(house, Vec3(x, -3, 0), Vec3(x + w, 3, height));
-      if (h > 0 && seed % 2 == 0) house.triangles.erase(house.triangles.begin() + 6, house.triangles.begin() + 8);  // the x = lo wall
+      if (h > 0 && seed % 2 == 0)
+        house.triangles.erase(house.triangles.begin() + 6, house.triangles.begin() + 8);  // the x = lo wall
       soup.append(house);
       x += w;
     }
@@ -150,8 +153,8 @@ BOOST_AUTO_TEST_CASE(open_bottom_boxes_on_a_ground_with_shared_walls_and_t_junct
     add_quad(soup, Vec3(0, 10, 4), Vec3(10, 10, 4), Vec3(10, 10, 8), Vec3(0, 10, 8));
     std::vector<QueryPoint> pts;
     for (int i = 0; i < 10; ++i) pts.push_back({Vec3{rng.uniform(-20, 20), rng.uniform(-9, 9), 0.05}, Vec3(0, 0, 1)});
-    pts.push_back({Vec3(-5, -3.05, 3), Vec3(0, -1, 0)});   // on a facade, facing out
-    pts.push_back({Vec3(-1, 9.95, 2), Vec3(0, -1, 0)});    // before the T-junction wall
+    pts.push_back({Vec3(-5, -3.05, 3), Vec3(0, -1, 0)});               // on a facade, facing out
+    pts.push_back({Vec3(-1, 9.95, 2), Vec3(0, -1, 0)});                // before the T-junction wall
     pts.push_back({Vec3(rng.uniform(-11, -2), 0, 1), Vec3(0, 0, 1)});  // inside a house: no sky
     check_against_oracle(soup, pts, "open boxes");
     const Scene scene(soup);
@@ -167,20 +170,20 @@ BOOST_AUTO_TEST_CASE(overhangs_bridges_and_balconies) {
   add_quad(soup, Vec3(-40, -40, 0), Vec3(40, -40, 0), Vec3(40, 40, 0), Vec3(-40, 40, 0));
   append_box(soup, Vec3(-12, -4, 0), Vec3(-4, 4, 15));  // two buildings across a street
   append_box(soup, Vec3(4, -4, 0), Vec3(12, 4, 12));
-  append_box(soup, Vec3(-4, -1, 6), Vec3(4, 1, 7));     // a bridge between them, 6 m up
-  append_box(soup, Vec3(4, 4, 3), Vec3(7, 5.5, 3.2));   // a balcony slab on the second's north side
+  append_box(soup, Vec3(-4, -1, 6), Vec3(4, 1, 7));    // a bridge between them, 6 m up
+  append_box(soup, Vec3(4, 4, 3), Vec3(7, 5.5, 3.2));  // a balcony slab on the second's north side
   // An eave: the first building's roof overhangs its east wall by 1.5 m (a single sheet).
   add_quad(soup, Vec3(-4, -4, 15), Vec3(-2.5, -4, 15), Vec3(-2.5, 4, 15), Vec3(-4, 4, 15));
   std::vector<QueryPoint> pts = {
-      {Vec3(0, 0, 0.05), Vec3(0, 0, 1)},      // under the bridge: sky both sides
-      {Vec3(0, -3, 0.05), Vec3(0, 0, 1)},     // beside it
-      {Vec3(5.5, 5.0, 0.5), Vec3(0, 0, 1)},   // under the balcony
-      {Vec3(5.5, 6.0, 0.5), Vec3(0, 1, 0)},   // in front of the wall below it, facing out
-      {Vec3(-3.0, 0, 10), Vec3(1, 0, 0)},     // under the eave, facing the street
-      {Vec3(0, 0, 7.5), Vec3(0, 0, 1)},       // on the bridge
-      {Vec3(0, 0, 6.5), Vec3(0, 0, -1)},      // inside the bridge, facing down
-      {Vec3(0, 0, 5.5), Vec3(0, 0, -1)},      // under the bridge, facing down: its soffit
-      {Vec3(0, 3, 3), unit_normal(2.0, 1.0)}, // a downward-tilted face in the street
+      {Vec3(0, 0, 0.05), Vec3(0, 0, 1)},       // under the bridge: sky both sides
+      {Vec3(0, -3, 0.05), Vec3(0, 0, 1)},      // beside it
+      {Vec3(5.5, 5.0, 0.5), Vec3(0, 0, 1)},    // under the balcony
+      {Vec3(5.5, 6.0, 0.5), Vec3(0, 1, 0)},    // in front of the wall below it, facing out
+      {Vec3(-3.0, 0, 10), Vec3(1, 0, 0)},      // under the eave, facing the street
+      {Vec3(0, 0, 7.5), Vec3(0, 0, 1)},        // on the bridge
+      {Vec3(0, 0, 6.5), Vec3(0, 0, -1)},       // inside the bridge, facing down
+      {Vec3(0, 0, 5.5), Vec3(0, 0, -1)},       // under the bridge, facing down: its soffit
+      {Vec3(0, 3, 3), unit_normal(2.0, 1.0)},  // a downward-tilted face in the street
   };
   check_against_oracle(soup, pts, "overhangs");
   // Sky shows below the bridge from a street point: the union has an interval above a gap.
@@ -304,7 +307,8 @@ BOOST_AUTO_TEST_CASE(delft_terrain_point_behind_a_low_skyline, *skyband::test::n
   BOOST_TEST(std::abs(f.sky_exposure - 0.97433) < 1e-4, "exposure " << f.sky_exposure);
   const UnionSkyFactors ref = sky_union_oracle(q.position + kOffset * q.normal, q.normal, soup);
   BOOST_TEST(std::abs(f.svf - ref.svf) < kExact, "svf " << f.svf << " oracle " << ref.svf);
-  BOOST_TEST(std::abs(f.sky_exposure - ref.sky_exposure) < kExact, "exposure " << f.sky_exposure << " oracle " << ref.sky_exposure);
+  BOOST_TEST(std::abs(f.sky_exposure - ref.sky_exposure) < kExact,
+             "exposure " << f.sky_exposure << " oracle " << ref.sky_exposure);
 }
 
 BOOST_AUTO_TEST_CASE(sun_look_up_agrees_with_the_exact_test) {
@@ -437,7 +441,8 @@ BOOST_AUTO_TEST_CASE(degeneracy_corpus, *skyband::test::needs_shared_data()) {
 BOOST_AUTO_TEST_CASE(grazing_sliver_under_a_flat_sheet) {
   const std::array<std::array<Vec2, 3>, 2> tris{{{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, {Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)}}};
   TriangleSoup soup;
-  for (const auto& t : tris) add_triangle(soup, Vec3(t[0].x(), t[0].y(), 0), Vec3(t[1].x(), t[1].y(), 0), Vec3(t[2].x(), t[2].y(), 0));
+  for (const auto& t : tris)
+    add_triangle(soup, Vec3(t[0].x(), t[0].y(), 0), Vec3(t[1].x(), t[1].y(), 0), Vec3(t[2].x(), t[2].y(), 0));
   const QueryPoint q{Vec3(0.39361954249904779, 0.90192179996149213, 0),
                      Vec3(-0.10066490192229853, 0.9948938507220475, -0.0072665890505994365)};
   const Vec3 p = q.position + kOffset * q.normal;  // where the method evaluates
@@ -470,16 +475,21 @@ BOOST_AUTO_TEST_CASE(grazing_sliver_under_a_flat_sheet) {
     std::sort(iv.begin(), iv.end());
     std::vector<std::pair<double, double>> merged;
     for (const auto& v : iv)
-      if (!merged.empty() && v.first <= merged.back().second) merged.back().second = std::max(merged.back().second, v.second);
-      else merged.push_back(v);
+      if (!merged.empty() && v.first <= merged.back().second)
+        merged.back().second = std::max(merged.back().second, v.second);
+      else
+        merged.push_back(v);
     // Visible elevation ranges: beyond the last interval, in the gaps, and before the first.
     std::vector<std::pair<double, double>> vis;
     vis.emplace_back(0.0, merged.empty() ? kPi / 2 : std::atan(h / merged.back().second));
-    for (std::size_t i = 1; i < merged.size(); ++i) vis.emplace_back(std::atan(h / merged[i].first), std::atan(h / merged[i - 1].second));
+    for (std::size_t i = 1; i < merged.size(); ++i)
+      vis.emplace_back(std::atan(h / merged[i].first), std::atan(h / merged[i - 1].second));
     if (!merged.empty() && merged.front().first > 0) vis.emplace_back(std::atan(h / merged.front().first), kPi / 2);
     const double tan_plane = sin_t * cos_d / -cos_t;  // the face's plane: n·ω > 0 below it (cos_t < 0)
     const double e_max = tan_plane > 0 ? std::atan(tan_plane) : 0.0;
-    const auto F = [&](double e) { return sin_t * cos_d * (e / 2 + std::sin(2 * e) / 4) + cos_t * std::sin(e) * std::sin(e) / 2; };
+    const auto F = [&](double e) {
+      return sin_t * cos_d * (e / 2 + std::sin(2 * e) / 4) + cos_t * std::sin(e) * std::sin(e) / 2;
+    };
     for (auto [e0, e1] : vis) {
       e1 = std::min(e1, e_max);
       if (e1 <= e0) continue;

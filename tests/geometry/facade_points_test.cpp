@@ -10,15 +10,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
-#include "geometry/points/facade_points.h"
 #include "geometry/core/input_error.h"
 #include "geometry/mesh/scene.h"
 #include "geometry/mesh/segment_crossing.h"
+#include "geometry/points/facade_points.h"
 
 using namespace skyband;
 
@@ -47,11 +47,11 @@ struct BoxFaces {
 // its own vertices (no sharing), as a polygon-soup reader writes them, except where noted.
 void add_box(TriangleSoup& s, double x0, double y0, double z0, double x1, double y1, double z1, BoxFaces f = {},
              std::uint32_t material = 0) {
-  const Vec3 c[8] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
+  const Vec3 c[8] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                     {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
   if (f.floor) add_quad(s, c[0], c[3], c[2], c[1], material, f.flip_mask & 1u);
   if (f.roof) add_quad(s, c[4], c[5], c[6], c[7], material, f.flip_mask & 2u);
-  for (int k = 0; k < 4; ++k)
-    add_quad(s, c[k], c[(k + 1) % 4], c[4 + (k + 1) % 4], c[4 + k], material, f.flip_mask & (4u << k));
+  for (int k = 0; k < 4; ++k) add_quad(s, c[k], c[(k + 1) % 4], c[4 + (k + 1) % 4], c[4 + k], material, f.flip_mask & (4u << k));
 }
 
 // The expected outward normal of a point of box [x0, x1] × [y0, y1] × [z0, z1] moved D out of
@@ -74,8 +74,12 @@ void check_box_points(const FacadePoints& fp, double x0, double y0, double z0, d
     const Vec3 n = outward_of_box(p.position, x0, y0, z0, x1, y1, z1);
     BOOST_TEST(p.normal == n);
     // The point is `offset` out of the face: its distance to the face's plane.
-    const double d = n.x() > 0 ? p.position.x() - x1 : n.x() < 0 ? x0 - p.position.x() : n.y() > 0 ? p.position.y() - y1
-                     : n.y() < 0 ? y0 - p.position.y() : n.z() > 0 ? p.position.z() - z1 : z0 - p.position.z();
+    const double d = n.x() > 0   ? p.position.x() - x1
+                     : n.x() < 0 ? x0 - p.position.x()
+                     : n.y() > 0 ? p.position.y() - y1
+                     : n.y() < 0 ? y0 - p.position.y()
+                     : n.z() > 0 ? p.position.z() - z1
+                                 : z0 - p.position.z();
     BOOST_TEST(d == offset, boost::test_tools::tolerance(1e-12));  // rounding of the point and its offset (coordinates ≤ 20 m)
     BOOST_TEST(!strictly_inside(p.position, x0, y0, z0, x1, y1, z1));
   }

@@ -11,9 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "geometry/points/ground_grid.h"
 #include "geometry/core/input_error.h"
 #include "geometry/mesh/scene.h"
+#include "geometry/points/ground_grid.h"
 
 using namespace skyband;
 
@@ -29,7 +29,8 @@ void add_quad(TriangleSoup& s, const Vec3& a, const Vec3& b, const Vec3& c, cons
 
 // A closed box [x0, x1] × [y0, y1] × [z0, z1] of material `m`.
 void add_box(TriangleSoup& s, double x0, double y0, double z0, double x1, double y1, double z1, std::uint32_t m) {
-  const Vec3 c[8] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
+  const Vec3 c[8] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                     {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
   add_quad(s, c[0], c[3], c[2], c[1], m);
   add_quad(s, c[4], c[5], c[6], c[7], m);
   for (int k = 0; k < 4; ++k) add_quad(s, c[k], c[(k + 1) % 4], c[4 + (k + 1) % 4], c[4 + k], m);

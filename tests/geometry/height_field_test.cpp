@@ -9,13 +9,13 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/core/input_error.h"
 #include "geometry/horizon/column_scene.h"
 #include "geometry/mesh/height_field.h"
-#include "geometry/core/input_error.h"
 #include "geometry/mesh/scene.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 
 using namespace skyband;
 using namespace skyband::oracle;
@@ -91,7 +91,8 @@ BOOST_AUTO_TEST_CASE(random_fields_match_the_union_oracle_in_both_raster_orienta
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
       // Both exact: rounding only (horizon_svf_test's kExact).
-      BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < 1e-9, "dx " << dx << " point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
+      BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < 1e-9,
+                 "dx " << dx << " point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
       BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < 1e-9, "dx " << dx << " point " << i);
     }
   }
@@ -117,7 +118,8 @@ BOOST_AUTO_TEST_CASE(long_wall_closed_form) {
   const HeightField f = field(n, 3, h);
   const Scene scene(height_field_mesh(f, -1.0));
   const QueryPoint q{Vec3(f.centre_x(n / 2), f.corner_y(1) - 1.5, 0.0), Vec3(0, 0, 1)};
-  const SkyFactorsRun run = compute_sky_factors(scene, std::vector<QueryPoint>{q}, horizon_first(), SkyFactorsMethod::automatic, 1);
+  const SkyFactorsRun run =
+      compute_sky_factors(scene, std::vector<QueryPoint>{q}, horizon_first(), SkyFactorsMethod::automatic, 1);
   BOOST_TEST(run.by_horizon == 1u);
   const double d = 1.5, H = 2.0;
   BOOST_TEST(std::abs(run.factors[0].svf - 0.5 * (1 + d / std::hypot(d, H))) < 1e-4);

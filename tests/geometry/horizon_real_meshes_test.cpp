@@ -31,8 +31,8 @@
 #include "geometry/horizon/column_scene.h"
 #include "geometry/horizon/horizon_svf.h"
 #include "geometry/mesh/scene.h"
-#include "geometry/visibility/sky_factors.h"
 #include "geometry/support/lambert_oracle.h"
+#include "geometry/visibility/sky_factors.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"
 
@@ -57,7 +57,9 @@ constexpr double kBandError = 1.0 / kBands;
 // Points are evaluated this far in front of their face (VisibilityOptions' default).
 constexpr double kOffset = 1e-6;
 
-TriangleSoup load(const std::string& name) { return read_mesh(fs::path(SKYBAND_SHARED_DATA) / "buildings" / name); }
+TriangleSoup load(const std::string& name) {
+  return read_mesh(fs::path(SKYBAND_SHARED_DATA) / "buildings" / name);
+}
 
 VisibilityOptions reference_bands() {
   VisibilityOptions o;
@@ -97,8 +99,10 @@ std::vector<Component> components(const TriangleSoup& soup) {
   for (std::uint32_t t = 0; t < soup.triangles.size(); ++t)
     for (std::uint32_t vi : soup.triangles[t]) {
       std::uint32_t& f = first[weld[vi]];
-      if (f == UINT32_MAX) f = t;
-      else parent[find(t)] = find(f);
+      if (f == UINT32_MAX)
+        f = t;
+      else
+        parent[find(t)] = find(f);
     }
   // Each component keeps its own vertices (a copy of the used ones, positions unchanged); the
   // signed volume is summed relative to the component's first vertex (coordinates of ~5e6 m would
@@ -150,7 +154,9 @@ TriangleSoup column_solid_subset(const TriangleSoup& soup, std::size_t& count, s
 }
 
 // Is nothing straight above p (an independent outdoors test: the scene's ray cast)?
-bool open_above(const Scene& scene, const Vec3& p) { return !scene.intersect(Ray{p, Vec3(0, 0, 1)}); }
+bool open_above(const Scene& scene, const Vec3& p) {
+  return !scene.intersect(Ray{p, Vec3(0, 0, 1)});
+}
 
 // Ground points: a grid over the scene's box at height z_m, kept where nothing is above them.
 std::vector<QueryPoint> ground_grid(const Scene& scene, int n, double margin_m, double z_m) {
@@ -198,7 +204,8 @@ void check_agreement(const Scene& scene, std::span<const QueryPoint> points, std
     BOOST_TEST(std::abs(h[i].svf - band[i].svf) <= kBandError,
                what << " p " << points[i].position.transpose() << " horizon " << h[i].svf << " bands " << band[i].svf);
     if (i % oracle_stride != 0) continue;
-    const double exact = oracle::svf_union_oracle(points[i].position + kOffset * points[i].normal, points[i].normal, scene.soup());
+    const double exact =
+        oracle::svf_union_oracle(points[i].position + kOffset * points[i].normal, points[i].normal, scene.soup());
     worst_exact = std::max(worst_exact, std::abs(h[i].svf - exact));
     BOOST_TEST(std::abs(h[i].svf - exact) <= kExact,
                what << " p " << points[i].position.transpose() << " horizon " << h[i].svf << " exact " << exact);
@@ -336,7 +343,8 @@ BOOST_AUTO_TEST_CASE(city_files_are_not_column_scenes_at_street_level, *skyband:
   BOOST_TEST(run.by_horizon == 0u);
   BOOST_TEST(run.by_exact == street.size());
   for (std::size_t i = 0; i < street.size(); i += 4) {
-    const auto exact = oracle::sky_union_oracle(street[i].position + kOffset * street[i].normal, street[i].normal, rotterdam.soup());
+    const auto exact =
+        oracle::sky_union_oracle(street[i].position + kOffset * street[i].normal, street[i].normal, rotterdam.soup());
     BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < 1e-9);
     BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < 1e-9);
   }

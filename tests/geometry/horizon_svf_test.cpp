@@ -11,12 +11,12 @@
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"
+#include "geometry/bands/sky_integral.h"
 #include "geometry/horizon/column_scene.h"
 #include "geometry/horizon/horizon_svf.h"
-#include "geometry/visibility/sky_factors.h"
-#include "geometry/bands/sky_integral.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_factors.h"
 
 using namespace skyband;
 using namespace skyband::oracle;
@@ -34,7 +34,9 @@ bool inside_footprint(const OrientedBox& b, const Vec3& p, double margin) {
          std::abs(s * d.x() + c * d.y()) <= 0.5 * b.size.y() + margin;
 }
 
-Vec3 unit_normal(double tilt, double az) { return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)); }
+Vec3 unit_normal(double tilt, double az) {
+  return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt));
+}
 
 // The band method as a reference: 4096 fixed bands, no refinement, no axis tail.
 VisibilityOptions fine_bands() {
@@ -52,8 +54,7 @@ std::vector<QueryPoint> points_around(const std::vector<OrientedBox>& boxes, std
   std::vector<QueryPoint> pts;
   gen::Rng rng(seed);
   while (pts.size() < count) {
-    QueryPoint q{Vec3{rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)},
-                 rng.unit_normal(0, kPi / 2, 0, 6.28)};
+    QueryPoint q{Vec3{rng.uniform(-12, 12), rng.uniform(-12, 12), rng.uniform(0, 4)}, rng.unit_normal(0, kPi / 2, 0, 6.28)};
     if (pts.size() < horizontal) q.normal = Vec3(0, 0, 1);
     if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.05); }))
       pts.push_back(q);
@@ -242,9 +243,8 @@ BOOST_AUTO_TEST_CASE(random_box_scenes_match_the_union_oracle) {
       const double exact = svf_union_oracle(p, q.normal, soup);
       worst = std::max(worst, std::abs(f.svf - exact));
       ++n;
-      BOOST_TEST(std::abs(f.svf - exact) < kExact,
-                 "seed " << seed << " p " << q.position.transpose() << " n " << q.normal.transpose() << " horizon " << f.svf
-                         << " exact " << exact);
+      BOOST_TEST(std::abs(f.svf - exact) < kExact, "seed " << seed << " p " << q.position.transpose() << " n "
+                                                           << q.normal.transpose() << " horizon " << f.svf << " exact " << exact);
     }
   }
   BOOST_TEST_MESSAGE("random box scenes: max |horizon − oracle| " << worst << " over " << n << " points");
@@ -277,14 +277,15 @@ BOOST_AUTO_TEST_CASE(refuses_points_under_or_inside_solids_and_the_driver_falls_
   const ColumnScene columns = classify_column_scene(scene.soup());
   HorizonSvf h(scene, columns, 1e-6);
   SkyFactors f;
-  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 2), Vec3(0, 0, 1)}, f));   // below the floating floor, which it sees
-  BOOST_TEST(!h.compute(QueryPoint{Vec3(6, 1, 0), Vec3(0, 0, 1)}, f));   // on the ground, seeing the floating box
-  BOOST_TEST(h.compute(QueryPoint{Vec3(2, 2, 4), Vec3(0, 0, 1)}, f));    // on the roof: valid
-  BOOST_TEST(f.svf < 1.0);                                               // the floating box is higher
-  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, f)); // inside the first box
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 2), Vec3(0, 0, 1)}, f));    // below the floating floor, which it sees
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(6, 1, 0), Vec3(0, 0, 1)}, f));    // on the ground, seeing the floating box
+  BOOST_TEST(h.compute(QueryPoint{Vec3(2, 2, 4), Vec3(0, 0, 1)}, f));     // on the roof: valid
+  BOOST_TEST(f.svf < 1.0);                                                // the floating box is higher
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, f));  // inside the first box
 
   // The driver: inside → 0 by the exact visible sky; on the roof and beside → the horizon.
-  const std::vector<QueryPoint> pts = {{Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, {Vec3(2, 2, 4), Vec3(0, 0, 1)}, {Vec3(6, 6, 4), Vec3(0, 0, 1)}};
+  const std::vector<QueryPoint> pts = {
+      {Vec3(2, 2, 3.5), Vec3(0, 0, 1)}, {Vec3(2, 2, 4), Vec3(0, 0, 1)}, {Vec3(6, 6, 4), Vec3(0, 0, 1)}};
   const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
   BOOST_TEST(run.by_exact == 1u);
   BOOST_TEST(run.by_horizon == 2u);
@@ -306,8 +307,10 @@ BOOST_AUTO_TEST_CASE(city_points_threads_and_projected_coordinates) {
   for (std::size_t i = 0; i < pts.size(); ++i) BOOST_TEST(one.factors[i].svf == two.factors[i].svf);
   // Against the oracle on a few points (exact union of the city's front faces).
   for (std::size_t i = 0; i < pts.size(); i += 10) {
-    const SvfBounds b = svf_union_oracle_culled(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, city.soup, 1e9, 1e-9, true, 1e9);
-    BOOST_TEST(std::abs(one.factors[i].svf - b.estimate()) < kExact, "point " << i << " horizon " << one.factors[i].svf << " oracle " << b.estimate());
+    const SvfBounds b =
+        svf_union_oracle_culled(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, city.soup, 1e9, 1e-9, true, 1e9);
+    BOOST_TEST(std::abs(one.factors[i].svf - b.estimate()) < kExact,
+               "point " << i << " horizon " << one.factors[i].svf << " oracle " << b.estimate());
   }
   // Projected coordinates (x ≈ 4·10⁵, y ≈ 6·10⁶ m): the same answers to ~1e-9.
   TriangleSoup moved = city.soup;
@@ -341,9 +344,12 @@ BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
     BOOST_TEST_REQUIRE(h.compute(pts[i], f));
     h.visible_fan(fan);
     double e_uniform, e_sky;
-    integrate_fan_channels<1>(fan, pts[i].normal, [](const Vec3&, double* c) { c[0] = 1.0; }, &e_uniform, 0.2);
-    integrate_fan_channels<1>(fan, pts[i].normal, [&](const Vec3& w, double* c) { c[0] = sky(w); }, &e_sky, 0.2);
-    BOOST_TEST(std::abs(e_uniform - kPi * f.svf) < 1e-5 * kPi, "point " << i << ": " << e_uniform - kPi * f.svf << " n " << pts[i].normal.transpose());
+    integrate_fan_channels<1>(
+        fan, pts[i].normal, [](const Vec3&, double* c) { c[0] = 1.0; }, &e_uniform, 0.2);
+    integrate_fan_channels<1>(
+        fan, pts[i].normal, [&](const Vec3& w, double* c) { c[0] = sky(w); }, &e_sky, 0.2);
+    BOOST_TEST(std::abs(e_uniform - kPi * f.svf) < 1e-5 * kPi,
+               "point " << i << ": " << e_uniform - kPi * f.svf << " n " << pts[i].normal.transpose());
     const double band = integrate_irradiance(cache.view(i), sky, 0.05);
     BOOST_TEST(std::abs(e_sky - band) < 1e-4 * std::max(1.0, band), "point " << i << ": fan " << e_sky << " bands " << band);
   }
@@ -436,7 +442,8 @@ BOOST_AUTO_TEST_CASE(columns_touching_along_a_vertical_edge_or_a_vertex) {
   BOOST_TEST(run.by_horizon == pts.size());
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
-    BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact, "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
+    BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact,
+               "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
     BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < kExact, "point " << i);
   }
 

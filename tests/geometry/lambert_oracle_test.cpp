@@ -33,8 +33,10 @@ Polygon3 rect_y_plane(double c, double x0, double x1, double z0, double z1) {
 
 BOOST_AUTO_TEST_CASE(perpendicular_rectangle_closed_form_and_table) {
   // reference-notes §5: (w, h, c) → F, printed to 5 decimals.
-  struct Row { double w, h, c, f; };
-  const Row rows[] = {{1, 1, 1, 0.05573}, {2, 1, 1, 0.06870}, {1, 2, 1, 0.09507},
+  struct Row {
+    double w, h, c, f;
+  };
+  const Row rows[] = {{1, 1, 1, 0.05573},   {2, 1, 1, 0.06870},  {1, 2, 1, 0.09507},
                       {1, 1, 0.5, 0.12427}, {10, 1, 1, 0.07317}, {1, 10, 1, 0.12343}};
   const Vec3 p(0, 0, 0), n(0, 0, 1);
   for (const Row& r : rows) {
@@ -46,7 +48,9 @@ BOOST_AUTO_TEST_CASE(perpendicular_rectangle_closed_form_and_table) {
 }
 
 BOOST_AUTO_TEST_CASE(parallel_rectangle_closed_form_and_table) {
-  struct Row { double a, b, f; };
+  struct Row {
+    double a, b, f;
+  };
   const Row rows[] = {{1, 1, 0.13853}, {1, 2, 0.16738}, {2, 2, 0.20776}, {0.5, 0.5, 0.05986}, {5, 5, 0.24208}};
   const Vec3 p(0, 0, 0), n(0, 0, 1);
   for (const Row& r : rows) {
@@ -97,7 +101,9 @@ BOOST_AUTO_TEST_CASE(wall_of_height_h_at_distance_d) {
   // rectangles (w = L/2): SVF_L = 1 − 2·F_perp(L/2, H, d) exactly; as L → ∞ this tends to
   // ½[1 + d/√(d² + H²)] (table: d/H = 0.5 → 0.7236, 1 → 0.8536, 2 → 0.9472).
   const double H = 10, L = 3000 * H;
-  struct Row { double d_over_h, table; };
+  struct Row {
+    double d_over_h, table;
+  };
   for (const Row r : {Row{0.5, 0.7236}, Row{1, 0.8536}, Row{2, 0.9472}}) {
     const double d = r.d_over_h * H;
     OrientedBox wall;
@@ -122,15 +128,17 @@ BOOST_AUTO_TEST_CASE(canyon_floor_union_oracle) {
   // Union oracle on the triangles of a canyon 300 widths long vs the exact finite-length value
   // (each wall = two perpendicular rectangles) and vs the infinite closed form + table values.
   const double W = 10, L = 300 * W;
-  struct Row { double h_over_w, x_over_w, table; };
-  const Row rows[] = {{0.25, 0.5, 0.8944}, {0.5, 0.5, 0.7071}, {1, 0.5, 0.4472}, {2, 0.5, 0.2425},
-                      {3, 0.5, 0.1644}, {0.5, 0.25, 0.6396}, {1, 0.25, 0.4213}};
+  struct Row {
+    double h_over_w, x_over_w, table;
+  };
+  const Row rows[] = {{0.25, 0.5, 0.8944}, {0.5, 0.5, 0.7071},  {1, 0.5, 0.4472}, {2, 0.5, 0.2425},
+                      {3, 0.5, 0.1644},    {0.5, 0.25, 0.6396}, {1, 0.25, 0.4213}};
   for (const Row& r : rows) {
     const double H = r.h_over_w * W, x = r.x_over_w * W;
     const TriangleSoup soup = gen::boxes_to_soup(gen::street_canyon(W, H, L));
     const double oracle = svf_union_oracle(Vec3(0, x, 0), Vec3(0, 0, 1), soup);
-    const double finite = 1 - 2 * perpendicular_rectangle_form_factor(0.5 * L, H, x) -
-                          2 * perpendicular_rectangle_form_factor(0.5 * L, H, W - x);
+    const double finite =
+        1 - 2 * perpendicular_rectangle_form_factor(0.5 * L, H, x) - 2 * perpendicular_rectangle_form_factor(0.5 * L, H, W - x);
     BOOST_TEST(std::abs(oracle - finite) < kExactAgreement);
     const double infinite = canyon_floor_svf(x, W, H);
     const double length_effect = finite - infinite;
@@ -139,8 +147,8 @@ BOOST_AUTO_TEST_CASE(canyon_floor_union_oracle) {
     BOOST_TEST(length_effect > 0);
     BOOST_TEST(length_effect < 1e-4);
     BOOST_TEST(std::abs(infinite - r.table) < kTable4);
-    BOOST_TEST_MESSAGE("canyon H/W=" << r.h_over_w << " x/W=" << r.x_over_w << ": oracle " << oracle
-                                     << ", finite-length effect " << length_effect);
+    BOOST_TEST_MESSAGE("canyon H/W=" << r.h_over_w << " x/W=" << r.x_over_w << ": oracle " << oracle << ", finite-length effect "
+                                     << length_effect);
   }
   // Foot of the wall (x = 0, H/W = 1): P lies on the wall's bottom edge; the table gives 0.3536.
   const TriangleSoup soup = gen::boxes_to_soup(gen::street_canyon(W, W, L));
@@ -153,7 +161,9 @@ BOOST_AUTO_TEST_CASE(canyon_wall_union_oracle) {
   // Wall element on the south wall's inner face (y = 0, normal +y), exactly on the wall. The
   // opposite wall above the horizon is a parallel rectangle: SVF_L = ½ − 2·F_par(L/2, H − z, W).
   const double W = 10, L = 300 * W;
-  struct Row { double h_over_w, z_over_h, table; };
+  struct Row {
+    double h_over_w, z_over_h, table;
+  };
   const Row rows[] = {{1, 0, 0.1464}, {1, 0.5, 0.2764}, {2, 0, 0.0528}};
   for (const Row& r : rows) {
     const double H = r.h_over_w * W, z = r.z_over_h * H;
@@ -216,8 +226,10 @@ BOOST_AUTO_TEST_CASE(union_oracle_hides_occluded_box) {
   BOOST_TEST(std::abs(alone - both) < kExactAgreement);
   // Two boxes side by side with disjoint projections: contributions add.
   OrientedBox a, b;
-  a.centre = Vec3(0, 5, 2); a.size = Vec3(2, 2, 4);
-  b.centre = Vec3(0, -5, 2); b.size = Vec3(2, 2, 4);
+  a.centre = Vec3(0, 5, 2);
+  a.size = Vec3(2, 2, 4);
+  b.centre = Vec3(0, -5, 2);
+  b.size = Vec3(2, 2, 4);
   const double sum = 1 - (1 - svf_single_convex_box(p, n, a)) - (1 - svf_single_convex_box(p, n, b));
   BOOST_TEST(std::abs(sum - svf_union_oracle(p, n, gen::boxes_to_soup({a, b}))) < kExactAgreement);
 }
@@ -267,12 +279,16 @@ BOOST_AUTO_TEST_CASE(union_oracle_matches_monte_carlo_on_overlapping_boxes) {
       if (d.z() < 0) continue;
       bool hit = false;
       for (const auto& tri : soup.triangles)
-        if (ray_hits(p, d, soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]])) { hit = true; break; }
+        if (ray_hits(p, d, soup.vertices[tri[0]], soup.vertices[tri[1]], soup.vertices[tri[2]])) {
+          hit = true;
+          break;
+        }
       sky += !hit;
     }
     const double mc = double(sky) / kSamples;
     const double exact = svf_union_oracle(p, n, soup);
-    BOOST_TEST(std::abs(mc - exact) < 4.5 * 0.5 / std::sqrt(double(kSamples)), "point " << i << " mc " << mc << " exact " << exact);
+    BOOST_TEST(std::abs(mc - exact) < 4.5 * 0.5 / std::sqrt(double(kSamples)),
+               "point " << i << " mc " << mc << " exact " << exact);
     BOOST_TEST(exact < open_sky_view_factor(n) - 0.01);  // the boxes do occlude these points
   }
 }

@@ -13,7 +13,9 @@
 using namespace skyband;
 
 namespace {
-QueryPoint at(double x, double y) { return QueryPoint{Vec3(x, y, 1.0), Vec3(0, 0, 1)}; }
+QueryPoint at(double x, double y) {
+  return QueryPoint{Vec3(x, y, 1.0), Vec3(0, 0, 1)};
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(empty_and_single) {

@@ -24,13 +24,14 @@ Vec3 vector_area(const std::vector<Vec3>& p, const Triangles& tris, const Vec3& 
 
 double unsigned_area(const std::vector<Vec3>& p, const Triangles& tris, const Vec3& origin) {
   double s = 0;
-  for (const auto& t : tris) s += 0.5 * (p[t[1]] - origin - (p[t[0]] - origin)).cross(p[t[2]] - origin - (p[t[0]] - origin)).norm();
+  for (const auto& t : tris)
+    s += 0.5 * (p[t[1]] - origin - (p[t[0]] - origin)).cross(p[t[2]] - origin - (p[t[0]] - origin)).norm();
   return s;
 }
 
 // Does any triangle's centroid lie strictly inside the axis-aligned xy box (lo, hi)?
-bool centroid_inside(const std::vector<Vec3>& p, const Triangles& tris, double lo_x, double lo_y, double hi_x,
-                     double hi_y, const Vec3& origin) {
+bool centroid_inside(const std::vector<Vec3>& p, const Triangles& tris, double lo_x, double lo_y, double hi_x, double hi_y,
+                     const Vec3& origin) {
   for (const auto& t : tris) {
     const Vec3 c = ((p[t[0]] - origin) + (p[t[1]] - origin) + (p[t[2]] - origin)) / 3.0;
     if (c.x() > lo_x && c.x() < hi_x && c.y() > lo_y && c.y() < hi_y) return true;
@@ -90,8 +91,7 @@ BOOST_AUTO_TEST_CASE(clockwise_outer_ring_gives_clockwise_triangles) {
 
 BOOST_AUTO_TEST_CASE(vertical_wall_with_window_hole) {
   // Wall in the xz plane (normal −y for this ring order): 4 m × 3 m with a 1 m × 1.5 m window.
-  const std::vector<Vec3> p{{0, 0, 0}, {4, 0, 0}, {4, 0, 3}, {0, 0, 3},
-                            {1, 0, 1}, {1, 0, 2.5}, {2, 0, 2.5}, {2, 0, 1}};
+  const std::vector<Vec3> p{{0, 0, 0}, {4, 0, 0}, {4, 0, 3}, {0, 0, 3}, {1, 0, 1}, {1, 0, 2.5}, {2, 0, 2.5}, {2, 0, 1}};
   const Rings rings{{0, 1, 2, 3}, {4, 5, 6, 7}};
   const auto r = triangulate_polygon_with_holes(p, rings);
   BOOST_TEST(r.method == PolygonTriangulationMethod::kConstrainedDelaunay);

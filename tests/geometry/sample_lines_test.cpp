@@ -14,14 +14,16 @@
 #include "geometry/bands/band_visibility.h"
 #include "geometry/bands/sample_lines.h"
 #include "geometry/bands/sky_integral.h"
-#include "geometry/visibility/sky_visibility.h"
 #include "geometry/support/scene_generators.h"
+#include "geometry/visibility/sky_visibility.h"
 
 using namespace skyband;
 
 namespace {
 
-Vec3 unit_normal(double tilt, double az) { return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt)); }
+Vec3 unit_normal(double tilt, double az) {
+  return Vec3(std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt));
+}
 
 void add_triangle(TriangleSoup& s, const Vec3& a, const Vec3& b, const Vec3& c) {
   const auto base = std::uint32_t(s.vertices.size());
@@ -98,12 +100,12 @@ BOOST_AUTO_TEST_CASE(lines_of_a_city_with_bridges_overhangs_and_tilted_faces) {
   add_quad(soup, Vec3(-40, -40, 0), Vec3(40, -40, 0), Vec3(40, 40, 0), Vec3(-40, 40, 0));
   add_box(soup, Vec3(-12, -4, 0), Vec3(-4, 4, 15));
   add_box(soup, Vec3(4, -4, 0), Vec3(12, 4, 12));
-  add_box(soup, Vec3(-4, -1, 6), Vec3(4, 1, 7));    // a bridge: sky below it
-  add_box(soup, Vec3(4, 4, 3), Vec3(7, 5.5, 3.2));  // a balcony slab
+  add_box(soup, Vec3(-4, -1, 6), Vec3(4, 1, 7));                                             // a bridge: sky below it
+  add_box(soup, Vec3(4, 4, 3), Vec3(7, 5.5, 3.2));                                           // a balcony slab
   add_quad(soup, Vec3(-4, -4, 15), Vec3(-2.5, -4, 15), Vec3(-2.5, 4, 15), Vec3(-4, 4, 15));  // an eave
   std::vector<QueryPoint> pts = {
-      {Vec3(0, 0, 0.05), Vec3(0, 0, 1)},      {Vec3(0, -3, 0.05), Vec3(0, 0, 1)},   {Vec3(5.5, 5.0, 0.5), Vec3(0, 0, 1)},
-      {Vec3(5.5, 6.0, 0.5), Vec3(0, 1, 0)},   {Vec3(-3.0, 0, 10), Vec3(1, 0, 0)},   {Vec3(0, 0, 7.5), Vec3(0, 0, 1)},
+      {Vec3(0, 0, 0.05), Vec3(0, 0, 1)},      {Vec3(0, -3, 0.05), Vec3(0, 0, 1)},      {Vec3(5.5, 5.0, 0.5), Vec3(0, 0, 1)},
+      {Vec3(5.5, 6.0, 0.5), Vec3(0, 1, 0)},   {Vec3(-3.0, 0, 10), Vec3(1, 0, 0)},      {Vec3(0, 0, 7.5), Vec3(0, 0, 1)},
       {Vec3(0, 3, 3), unit_normal(2.0, 1.0)}, {Vec3(1, -2, 2), unit_normal(0.7, 4.0)}, {Vec3(-20, 7, 0.1), unit_normal(1.3, 5.5)},
   };
   check_lines(soup, pts, "bridges");
@@ -220,5 +222,7 @@ BOOST_AUTO_TEST_CASE(the_renderers_cache_is_the_same_by_either_method) {
   const VisibilityCache one = compute_visibility_cache(scene, pts, o, SkyFactorsMethod::exact, 1);
   BOOST_TEST(one.intervals().size() == exact.intervals().size());
   BOOST_TEST(std::equal(one.intervals().begin(), one.intervals().end(), exact.intervals().begin(),
-                        [](const VisibleInterval& x, const VisibleInterval& y) { return x.alpha0_rad == y.alpha0_rad && x.alpha1_rad == y.alpha1_rad; }));
+                        [](const VisibleInterval& x, const VisibleInterval& y) {
+                          return x.alpha0_rad == y.alpha0_rad && x.alpha1_rad == y.alpha1_rad;
+                        }));
 }

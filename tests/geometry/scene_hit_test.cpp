@@ -22,10 +22,10 @@ BOOST_AUTO_TEST_CASE(hit_point_on_face_and_normal_toward_origin) {
     double value;
   };
   const Case cases[] = {
-      {Vec3(0.7, 1.3, 5), Vec3(0.01, -0.02, -1), Vec3(0, 0, 1), 2, 1.0},   // roof from above
-      {Vec3(0.7, 1.3, -5), Vec3(0.02, 0.01, 1), Vec3(0, 0, -1), 2, 0.0},   // floor from below
-      {Vec3(-4, 0.9, 0.4), Vec3(1, 0.03, 0.01), Vec3(-1, 0, 0), 0, 0.0},   // west wall
-      {Vec3(1.1, 0.8, 0.5), Vec3(0.1, 0.2, 1), Vec3(0, 0, -1), 2, 1.0},    // roof from inside
+      {Vec3(0.7, 1.3, 5), Vec3(0.01, -0.02, -1), Vec3(0, 0, 1), 2, 1.0},  // roof from above
+      {Vec3(0.7, 1.3, -5), Vec3(0.02, 0.01, 1), Vec3(0, 0, -1), 2, 0.0},  // floor from below
+      {Vec3(-4, 0.9, 0.4), Vec3(1, 0.03, 0.01), Vec3(-1, 0, 0), 0, 0.0},  // west wall
+      {Vec3(1.1, 0.8, 0.5), Vec3(0.1, 0.2, 1), Vec3(0, 0, -1), 2, 1.0},   // roof from inside
   };
   for (const Case& c : cases) {
     const auto h = scene.surface_hit(Ray{c.origin, c.dir});

@@ -33,7 +33,11 @@ std::vector<double> core_svf(const Scene& scene, const std::vector<QueryPoint>& 
 struct ErrorStats {
   double max = 0, sum = 0;
   std::size_t n = 0;
-  void add(double e) { max = std::max(max, std::abs(e)); sum += std::abs(e); ++n; }
+  void add(double e) {
+    max = std::max(max, std::abs(e));
+    sum += std::abs(e);
+    ++n;
+  }
   double mean() const { return n ? sum / n : 0; }
 };
 
@@ -90,8 +94,10 @@ ErrorStats single_box_errors(const std::vector<SingleBoxCase>& cases, const Visi
       const double exact = svf_single_convex_box(c.points[i].position, c.points[i].normal, c.box);
       st.add(svf[i] - exact);
       if (std::abs(svf[i] - exact) > kDefaultAccuracy)
-        BOOST_TEST_MESSAGE("over 1e-3: point " << i << " p " << c.points[i].position.transpose() << " n " << c.points[i].normal.transpose()
-                           << " core " << svf[i] << " exact " << exact << " box c " << c.box.centre.transpose() << " s " << c.box.size.transpose() << " yaw " << c.box.yaw_rad);
+        BOOST_TEST_MESSAGE("over 1e-3: point " << i << " p " << c.points[i].position.transpose() << " n "
+                                               << c.points[i].normal.transpose() << " core " << svf[i] << " exact " << exact
+                                               << " box c " << c.box.centre.transpose() << " s " << c.box.size.transpose()
+                                               << " yaw " << c.box.yaw_rad);
     }
   }
   return st;
@@ -121,8 +127,8 @@ BOOST_AUTO_TEST_CASE(convergence_with_band_count_without_refinement) {
     opt.bands = n;
     opt.tolerance = 0;
     const ErrorStats st = single_box_errors(cases, opt);
-    BOOST_TEST_MESSAGE("N = " << n << ": max |err| " << st.max << ", mean " << st.mean()
-                              << ", rate log4(prev/mean) " << std::log(previous / st.mean()) / std::log(4.0));
+    BOOST_TEST_MESSAGE("N = " << n << ": max |err| " << st.max << ", mean " << st.mean() << ", rate log4(prev/mean) "
+                              << std::log(previous / st.mean()) / std::log(4.0));
     if (n > 16) BOOST_TEST(previous / st.mean() >= 3.0);
     previous = st.mean();
   }
@@ -213,13 +219,16 @@ BOOST_AUTO_TEST_CASE(random_multi_box_scenes_vs_union_oracle) {
     }
     // Facade points 5 cm off the walls (boxes may intersect, so skip any that end up inside one).
     for (const QueryPoint& q : gen::facade_points(boxes, 6, 0.05, 800 + seed))
-      if (std::none_of(boxes.begin(), boxes.end(), [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.0) && q.position.z() < b.size.z(); }))
+      if (std::none_of(boxes.begin(), boxes.end(),
+                       [&](const OrientedBox& b) { return inside_footprint(b, q.position, 0.0) && q.position.z() < b.size.z(); }))
         pts.push_back(q);
     const std::vector<double> svf = core_svf(scene, pts, VisibilityOptions{});
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const double exact = svf_union_oracle(pts[i].position, pts[i].normal, soup);
       st.add(svf[i] - exact);
-      BOOST_TEST(std::abs(svf[i] - exact) <= kDefaultAccuracy, "seed " << seed << " point " << i << " p " << pts[i].position.transpose() << " n " << pts[i].normal.transpose() << " core " << svf[i] << " exact " << exact);
+      BOOST_TEST(std::abs(svf[i] - exact) <= kDefaultAccuracy,
+                 "seed " << seed << " point " << i << " p " << pts[i].position.transpose() << " n " << pts[i].normal.transpose()
+                         << " core " << svf[i] << " exact " << exact);
     }
   }
   BOOST_TEST_MESSAGE("multi-box scenes, default options: max |err| " << st.max << ", mean " << st.mean() << " over " << st.n);

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "geometry/bands/band_visibility.h"
-#include "geometry/core/input_error.h"
 #include "geometry/bands/sky_integral.h"
+#include "geometry/core/input_error.h"
 #include "geometry/support/scene_generators.h"
 #include "io/mesh_reader.h"
 #include "shared_data.h"

@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <array>
 #include <set>
 #include <sstream>
 #include <string>
@@ -26,13 +26,17 @@ namespace tt = boost::test_tools;
 
 namespace {
 
-fs::path shared(const std::string& name) { return fs::path(SKYBAND_SHARED_DATA) / "citygml" / name; }
+fs::path shared(const std::string& name) {
+  return fs::path(SKYBAND_SHARED_DATA) / "citygml" / name;
+}
 const char* kTokyo2 = "plateau_tokyo_53394517_bldg_6697_2_op.citygml2.gml";
 const char* kTokyo3 = "plateau_tokyo_53394517_bldg_6697_2_op.citygml3.gml";
 const char* kYokosuka = "plateau_yokosuka_52397519_bldg_6697_op.citygml2.gml";
 const char* kLyon3 = "lyon_opera_CityGML3.0_LOD2.gml";
 
-fs::path temp_path() { return fs::temp_directory_path() / ("skyband_citygml_reader_test_" + std::to_string(::getpid())); }
+fs::path temp_path() {
+  return fs::temp_directory_path() / ("skyband_citygml_reader_test_" + std::to_string(::getpid()));
+}
 
 fs::path write_file(const std::string& name, const std::string& text) {
   fs::create_directories(temp_path());
@@ -77,8 +81,8 @@ std::string pos_list(const std::vector<Vec3>& ring) {
 }
 
 std::string polygon(const std::string& id, const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes = {}) {
-  std::string out = "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>" + pos_list(outer) +
-                    "</gml:LinearRing></gml:exterior>";
+  std::string out =
+      "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>" + pos_list(outer) + "</gml:LinearRing></gml:exterior>";
   for (const auto& h : holes) out += "<gml:interior><gml:LinearRing>" + pos_list(h) + "</gml:LinearRing></gml:interior>";
   return out + "</gml:Polygon>";
 }
@@ -92,10 +96,14 @@ std::string multi_surface(const std::vector<std::string>& polygons) {
 std::string document(const std::string& version, const std::string& srs, const std::string& members) {
   const std::string ns = "http://www.opengis.net/citygml/";
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"" + ns + version + "\" xmlns:bldg=\"" + ns +
-         "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version + "\" xmlns:veg=\"" + ns + "vegetation/" + version +
+         "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version + "\" xmlns:veg=\"" + ns + "vegetation/" +
+         version +
          "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">\n"
-         "<gml:boundedBy><gml:Envelope srsName=\"" + srs + "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
-         "<gml:upperCorner>1 1 1</gml:upperCorner></gml:Envelope></gml:boundedBy>\n" + members + "</core:CityModel>\n";
+         "<gml:boundedBy><gml:Envelope srsName=\"" +
+         srs +
+         "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
+         "<gml:upperCorner>1 1 1</gml:upperCorner></gml:Envelope></gml:boundedBy>\n" +
+         members + "</core:CityModel>\n";
 }
 
 // The box [lo, lo + (dx, dy, dz)]: its six faces as rings (outward, counter-clockwise seen from outside).
@@ -119,7 +127,8 @@ std::string thematic_surface(const std::string& type, const std::string& id, con
 
 // A box building: LoD 2 as thematic surfaces (the south wall with a 2 m × 1 m window hole) and a
 // lod2Solid referencing them by xlink (as PLATEAU writes it), plus an LoD 1 solid of its own polygons.
-std::string box_building(const std::string& id, const Box& b, bool lod1 = true, bool lod2 = true, const std::string& tag = "Building") {
+std::string box_building(const std::string& id, const Box& b, bool lod1 = true, bool lod2 = true,
+                         const std::string& tag = "Building") {
   std::string out = "<bldg:" + tag + " gml:id=\"" + id + "\">";
   if (lod1) {
     out += "<bldg:lod1Solid><gml:Solid><gml:exterior><gml:CompositeSurface>";
@@ -136,12 +145,15 @@ std::string box_building(const std::string& id, const Box& b, bool lod1 = true, 
     out += thematic_surface("GroundSurface", id + "_gs", {polygon(id + "_g", b.ground())});
     out += thematic_surface("RoofSurface", id + "_rs", {polygon(id + "_r", b.roof())});
     out += thematic_surface("WallSurface", id + "_ws", {polygon(id + "_s", b.south(), {hole})});
-    out += thematic_surface("WallSurface", id + "_ws2", {polygon(id + "_e", b.east()), polygon(id + "_n", b.north()), polygon(id + "_w", b.west())});
+    out += thematic_surface("WallSurface", id + "_ws2",
+                            {polygon(id + "_e", b.east()), polygon(id + "_n", b.north()), polygon(id + "_w", b.west())});
   }
   return out + "</bldg:" + tag + ">";
 }
 
-std::string member(const std::string& object) { return "<core:cityObjectMember>" + object + "</core:cityObjectMember>\n"; }
+std::string member(const std::string& object) {
+  return "<core:cityObjectMember>" + object + "</core:cityObjectMember>\n";
+}
 
 const Box kBox{Vec3(500000.25, 5400000.5, 10.125), 10, 20, 5};
 const char* kProjected = "urn:ogc:def:crs:EPSG::25832";  // ETRS89 / UTM zone 32N
@@ -271,8 +283,9 @@ BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
   // parent's LoD 1 would duplicate it); at LoD 1 the parent alone (the part has no LoD 1).
   const Box part{kBox.lo + Vec3(30, 0, 0), 10, 20, 5};
   std::string parent = box_building("parent", kBox, true, false);
-  parent.insert(parent.rfind("</bldg:Building>"),
-                "<bldg:consistsOfBuildingPart>" + box_building("part", part, false, true, "BuildingPart") + "</bldg:consistsOfBuildingPart>");
+  parent.insert(parent.rfind("</bldg:Building>"), "<bldg:consistsOfBuildingPart>" +
+                                                      box_building("part", part, false, true, "BuildingPart") +
+                                                      "</bldg:consistsOfBuildingPart>");
   const fs::path parts = write_file("parts.gml", document("2.0", kProjected, member(parent)));
   const TriangleSoup by_default = read_citygml(parts, {}, &report);
   BOOST_TEST(by_default.object_names == std::vector<std::string>{"part"});
@@ -291,8 +304,9 @@ BOOST_AUTO_TEST_CASE(terrain_classes_are_ground_and_citygml_1_0_reads) {
                            "</luse:lod1MultiSurface></luse:LandUse>";
   for (const std::string version : {"1.0", "2.0"}) {
     CityGmlReport report;
-    const TriangleSoup s =
-        read_citygml(write_file("land" + version + ".gml", document(version, kProjected, member(box_building("b", kBox)) + member(land))), {}, &report);
+    const TriangleSoup s = read_citygml(
+        write_file("land" + version + ".gml", document(version, kProjected, member(box_building("b", kBox)) + member(land))), {},
+        &report);
     BOOST_TEST(report.format == "CityGML " + version);
     const std::vector<bool> ground = ground_triangle_mask(s, default_ground_materials());
     double ground_m2 = 0;
@@ -309,26 +323,27 @@ BOOST_AUTO_TEST_CASE(terrain_classes_are_ground_and_citygml_1_0_reads) {
 // 2 × 2 × 3 box of area 2·4 + 4·6 = 32 m² whose corners sit exactly at reference + M·corner.
 BOOST_AUTO_TEST_CASE(implicit_geometries_are_placed) {
   const Box unit{Vec3(-0.5, -0.5, 0), 1, 1, 1};
-  const std::string tpl = "<gml:MultiSurface gml:id=\"tpl\">" +
-                          [&] {
-                            std::string m;
-                            int k = 0;
-                            for (const auto& ring : {unit.ground(), unit.roof(), unit.south(), unit.east(), unit.north(), unit.west()})
-                              m += "<gml:surfaceMember>" + polygon("tpl_" + std::to_string(k++), ring) + "</gml:surfaceMember>";
-                            return m;
-                          }() +
-                          "</gml:MultiSurface>";
+  const std::string tpl = "<gml:MultiSurface gml:id=\"tpl\">" + [&] {
+    std::string m;
+    int k = 0;
+    for (const auto& ring : {unit.ground(), unit.roof(), unit.south(), unit.east(), unit.north(), unit.west()})
+      m += "<gml:surfaceMember>" + polygon("tpl_" + std::to_string(k++), ring) + "</gml:surfaceMember>";
+    return m;
+  }() + "</gml:MultiSurface>";
   auto tree = [&](const std::string& id, const std::string& geometry, const Vec3& ref) {
-    return "<veg:SolitaryVegetationObject gml:id=\"" + id + "\"><veg:lod2ImplicitRepresentation><core:ImplicitGeometry>"
-           "<core:transformationMatrix>2 0 0 0 0 2 0 0 0 0 3 0 0 0 0 1</core:transformationMatrix>" + geometry +
-           "<core:referencePoint><gml:Point><gml:pos>" + number(ref.x()) + " " + number(ref.y()) + " " + number(ref.z()) +
+    return "<veg:SolitaryVegetationObject gml:id=\"" + id +
+           "\"><veg:lod2ImplicitRepresentation><core:ImplicitGeometry>"
+           "<core:transformationMatrix>2 0 0 0 0 2 0 0 0 0 3 0 0 0 0 1</core:transformationMatrix>" +
+           geometry + "<core:referencePoint><gml:Point><gml:pos>" + number(ref.x()) + " " + number(ref.y()) + " " +
+           number(ref.z()) +
            "</gml:pos></gml:Point></core:referencePoint></core:ImplicitGeometry></veg:lod2ImplicitRepresentation>"
            "</veg:SolitaryVegetationObject>";
   };
   const Vec3 a = kBox.lo + Vec3(-20, 0, 0), b = kBox.lo + Vec3(-40, 5, 0.5);
-  const fs::path file = write_file("trees.gml", document("2.0", kProjected,
-                                                         member(tree("tree1", "<core:relativeGMLGeometry>" + tpl + "</core:relativeGMLGeometry>", a)) +
-                                                             member(tree("tree2", "<core:relativeGMLGeometry xlink:href=\"#tpl\"/>", b))));
+  const fs::path file = write_file(
+      "trees.gml", document("2.0", kProjected,
+                            member(tree("tree1", "<core:relativeGMLGeometry>" + tpl + "</core:relativeGMLGeometry>", a)) +
+                                member(tree("tree2", "<core:relativeGMLGeometry xlink:href=\"#tpl\"/>", b))));
   CityGmlReport report;
   const TriangleSoup s = read_citygml(file, {}, &report);
   BOOST_TEST(s.object_names == (std::vector<std::string>{"tree1", "tree2"}));
@@ -342,8 +357,10 @@ BOOST_AUTO_TEST_CASE(implicit_geometries_are_placed) {
   BOOST_TEST(std::count(s.vertices.begin(), s.vertices.end(), corner) == 1);
   BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"2", 2}}));
   // In a geographic CRS the reference point is in degrees and the template in metres: not read, and said.
-  const fs::path geo = write_file("trees_geo.gml", document("2.0", "EPSG:6697", member(tree("t", "<core:relativeGMLGeometry>" + tpl +
-                                                                                                "</core:relativeGMLGeometry>", Vec3(35.68, 139.69, 40)))));
+  const fs::path geo = write_file(
+      "trees_geo.gml",
+      document("2.0", "EPSG:6697",
+               member(tree("t", "<core:relativeGMLGeometry>" + tpl + "</core:relativeGMLGeometry>", Vec3(35.68, 139.69, 40)))));
   const std::string e = input_error([&] { read_citygml(geo); });
   BOOST_TEST(e.find("no triangles (1 city objects, 1 skipped)") != std::string::npos, e);
 }
@@ -385,9 +402,11 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   overflow.replace(overflow.find("10.125"), 6, "1e999");
   BOOST_TEST(error_of("overflow.gml", overflow).find("not a finite number") != std::string::npos);
   // What libcitygml would cut silently (it keeps the text after the last interruption): refused.
-  for (const auto& [label, insert, expect] : std::vector<std::array<std::string, 3>>{
-           {"comment.gml", " <!-- a comment --> ", "comment"}, {"charref.gml", "&#32;", "character or entity reference"},
-           {"cdata.gml", "<![CDATA[ 1 ]]>", "CDATA"}, {"extra.gml", " 7", "not x y z triples"}}) {
+  for (const auto& [label, insert, expect] :
+       std::vector<std::array<std::string, 3>>{{"comment.gml", " <!-- a comment --> ", "comment"},
+                                               {"charref.gml", "&#32;", "character or entity reference"},
+                                               {"cdata.gml", "<![CDATA[ 1 ]]>", "CDATA"},
+                                               {"extra.gml", " 7", "not x y z triples"}}) {
     std::string t = good;
     t.insert(t.find(" ", t.find("<gml:posList srsDimension=\"3\">") + 31), insert);
     BOOST_TEST(error_of(label, t).find(expect) != std::string::npos, label);
@@ -397,8 +416,10 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   BOOST_TEST(error_of("2d.gml", flat).find("srsDimension") != std::string::npos);
   BOOST_TEST(error_of("nothing.gml", document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"/>"))).find("no triangles") !=
              std::string::npos);
-  BOOST_TEST(error_of("plain.xml", "<?xml version=\"1.0\"?><root><a/></root>").find("not CityGML 1.0 or 2.0") != std::string::npos);
-  BOOST_TEST(error_of("dtd.gml", "<?xml version=\"1.0\"?><!DOCTYPE x [<!ENTITY a \"aaaa\">]>" + good.substr(good.find("<core:CityModel")))
+  BOOST_TEST(error_of("plain.xml", "<?xml version=\"1.0\"?><root><a/></root>").find("not CityGML 1.0 or 2.0") !=
+             std::string::npos);
+  BOOST_TEST(error_of("dtd.gml",
+                      "<?xml version=\"1.0\"?><!DOCTYPE x [<!ENTITY a \"aaaa\">]>" + good.substr(good.find("<core:CityModel")))
                  .find("DOCTYPE") != std::string::npos);
   BOOST_TEST(error_of("geocentric.gml", document("2.0", "EPSG:4978", member(box_building("b", kBox)))).find("geocentric") !=
              std::string::npos);
@@ -411,9 +432,10 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   // A posList over 1 MiB, which libcitygml 2.4 would cut silently.
   std::vector<Vec3> long_ring;
   for (int i = 0; i < 40000; ++i) long_ring.push_back(kBox.lo + Vec3(std::cos(i * 1e-4), std::sin(i * 1e-4), 0));
-  const std::string long_text = document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>" +
-                                                                     multi_surface({polygon("p", long_ring)}) +
-                                                                     "</bldg:lod1MultiSurface></bldg:Building>"));
+  const std::string long_text =
+      document("2.0", kProjected,
+               member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>" + multi_surface({polygon("p", long_ring)}) +
+                      "</bldg:lod1MultiSurface></bldg:Building>"));
   BOOST_TEST(error_of("long.gml", long_text).find("cuts texts over 1 MiB") != std::string::npos);
   BOOST_TEST(input_error([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
 }

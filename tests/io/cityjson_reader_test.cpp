@@ -1,8 +1,8 @@
 #define BOOST_TEST_MODULE cityjson_reader
 #include <boost/test/unit_test.hpp>
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -28,9 +28,13 @@ using json = nlohmann::json;
 
 namespace {
 
-fs::path shared(const std::string& name) { return fs::path(SKYBAND_SHARED_DATA) / "cityjson" / name; }
+fs::path shared(const std::string& name) {
+  return fs::path(SKYBAND_SHARED_DATA) / "cityjson" / name;
+}
 
-fs::path temp_path() { return fs::temp_directory_path() / ("skyband_cityjson_reader_test_" + std::to_string(::getpid())); }
+fs::path temp_path() {
+  return fs::temp_directory_path() / ("skyband_cityjson_reader_test_" + std::to_string(::getpid()));
+}
 
 fs::path temp_dir() {
   fs::create_directories(temp_path());
@@ -169,14 +173,17 @@ std::vector<std::array<double, 3>> sorted_vertices(const TriangleSoup& s) {
 double unsigned_area(const TriangleSoup& s, const Vec3& origin) {
   double a = 0;
   for (const auto& t : s.triangles)
-    a += 0.5 * (s.vertices[t[1]] - origin - (s.vertices[t[0]] - origin)).cross(s.vertices[t[2]] - origin - (s.vertices[t[0]] - origin)).norm();
+    a += 0.5 * (s.vertices[t[1]] - origin - (s.vertices[t[0]] - origin))
+                   .cross(s.vertices[t[2]] - origin - (s.vertices[t[0]] - origin))
+                   .norm();
   return a;
 }
 
 Vec3 vector_area(const TriangleSoup& s, const Vec3& origin) {
   Vec3 a = Vec3::Zero();
   for (const auto& t : s.triangles)
-    a += 0.5 * (s.vertices[t[1]] - origin - (s.vertices[t[0]] - origin)).cross(s.vertices[t[2]] - origin - (s.vertices[t[0]] - origin));
+    a += 0.5 *
+         (s.vertices[t[1]] - origin - (s.vertices[t[0]] - origin)).cross(s.vertices[t[2]] - origin - (s.vertices[t[0]] - origin));
   return a;
 }
 
@@ -209,11 +216,13 @@ std::string model(const std::string& geometry, const std::string& vertices, cons
                   const std::string& type = "Building") {
   return R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],"translate":[85000,446000,0]},)"
          R"("metadata":{"referenceSystem":"https://www.opengis.net/def/crs/EPSG/0/7415"},)" +
-         extra + R"("CityObjects":{"b1":{"type":")" + type + R"(","geometry":[)" + geometry + R"(]}},"vertices":)" + vertices + "}";
+         extra + R"("CityObjects":{"b1":{"type":")" + type + R"(","geometry":[)" + geometry + R"(]}},"vertices":)" + vertices +
+         "}";
 }
 
 // Unit cube as integers ×1000 (scale 0.001 → 1 m), outward-oriented Solid faces.
-const std::string kCubeVertices = "[[0,0,0],[1000,0,0],[1000,1000,0],[0,1000,0],[0,0,1000],[1000,0,1000],[1000,1000,1000],[0,1000,1000]]";
+const std::string kCubeVertices =
+    "[[0,0,0],[1000,0,0],[1000,1000,0],[0,1000,0],[0,0,1000],[1000,0,1000],[1000,1000,1000],[0,1000,1000]]";
 const std::string kCubeShell = "[[[0,3,2,1]],[[4,5,6,7]],[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]],[[3,0,4,7]]]";
 
 }  // namespace
@@ -267,7 +276,7 @@ BOOST_AUTO_TEST_CASE(delft_counts_materials_and_vertices_match_an_independent_wa
       const double ulp = std::nextafter(m, INFINITY) - m;
       if (!(std::abs(static_cast<long double>(computed[k]) - exact) <= 2.5L * ulp)) ++outside_bound;
     }
-  BOOST_TEST(outside_bound == 0u);  // over all 18,262 × 3 coordinates
+  BOOST_TEST(outside_bound == 0u);                                             // over all 18,262 × 3 coordinates
   BOOST_TEST(std::binary_search(expected.begin(), expected.end(), computed));  // vertex 0 is used
 }
 
@@ -305,7 +314,8 @@ std::size_t open_ring_edges(const json& source, const std::string& id, std::size
   std::function<void(const json&)> rec = [&](const json& b) {
     if (!b[0].is_array()) {  // a ring
       for (std::size_t i = 0; i < b.size(); ++i) {
-        std::vector<long long> p = source["vertices"][b[i].get<std::size_t>()], q = source["vertices"][b[(i + 1) % b.size()].get<std::size_t>()];
+        std::vector<long long> p = source["vertices"][b[i].get<std::size_t>()],
+                               q = source["vertices"][b[(i + 1) % b.size()].get<std::size_t>()];
         if (p == q) continue;
         if (q < p) std::swap(p, q);
         ++uses[{p, q}];
@@ -460,9 +470,8 @@ BOOST_AUTO_TEST_CASE(bag_2024_cityjsonseq_is_read_feature_by_feature, *skyband::
   BOOST_TEST(r.features == 3u);  // README: a header and 3 CityJSONFeature lines
   BOOST_TEST(r.objects == 6u);   // each feature: a Building (LoD 0) and a BuildingPart
   BOOST_TEST(r.lods_used == (std::map<std::string, std::size_t>{{"2.2", 3}}));
-  const Walk w = walk_file(p, [](const std::string& type, const json&, const json& g) {
-    return type == "BuildingPart" && g["lod"] == "2.2";
-  });
+  const Walk w = walk_file(
+      p, [](const std::string& type, const json&, const json& g) { return type == "BuildingPart" && g["lod"] == "2.2"; });
   BOOST_TEST(r.triangles == w.triangles);
   BOOST_TEST(triangles_by_material(soup) == w.triangles_by_material);
   // Each feature's own vertices with the header's transform (the walk does the same per feature).
@@ -508,11 +517,11 @@ BOOST_AUTO_TEST_CASE(shared_files_read_fast_enough, *skyband::test::needs_shared
 
 BOOST_AUTO_TEST_CASE(square_with_square_hole_has_outer_minus_hole_area) {
   // 10 m × 10 m square with a 4 m × 4 m hole (integers ×1000, scale 0.001), RoofSurface.
-  const std::string geometry =
-      R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2,3],[4,7,6,5]]],)"
-      R"("semantics":{"surfaces":[{"type":"RoofSurface"}],"values":[0]}})";
-  const std::string vertices = "[[0,0,5000],[10000,0,5000],[10000,10000,5000],[0,10000,5000],"
-                               "[3000,3000,5000],[7000,3000,5000],[7000,7000,5000],[3000,7000,5000]]";
+  const std::string geometry = R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2,3],[4,7,6,5]]],)"
+                               R"("semantics":{"surfaces":[{"type":"RoofSurface"}],"values":[0]}})";
+  const std::string vertices =
+      "[[0,0,5000],[10000,0,5000],[10000,10000,5000],[0,10000,5000],"
+      "[3000,3000,5000],[7000,3000,5000],[7000,7000,5000],[3000,7000,5000]]";
   CityModelReport r;
   const TriangleSoup s = read_cityjson(write_file("hole.city.json", model(geometry, vertices)), {}, &r);
   // Closed form: 10² − 4² = 84 m², counter-clockwise seen from +z as the outer ring. The corners
@@ -528,19 +537,18 @@ BOOST_AUTO_TEST_CASE(square_with_square_hole_has_outer_minus_hole_area) {
 }
 
 BOOST_AUTO_TEST_CASE(cityjson_1_0_without_transform_reads_real_vertices) {
-  const std::string text =
-      R"({"type":"CityJSON","version":"1.0","metadata":{"referenceSystem":"urn:ogc:def:crs:EPSG::28992"},)"
-      R"("CityObjects":{"t":{"type":"TINRelief","geometry":[{"type":"CompositeSurface","lod":1,)"
-      R"("boundaries":[[[0,1,2]],[[0,2,3]]]}]}},)"
-      R"("vertices":[[0.5,0.25,1.125],[2.5,0.25,1.125],[2.5,3.25,1.125],[0.5,3.25,1.125]]})";
+  const std::string text = R"({"type":"CityJSON","version":"1.0","metadata":{"referenceSystem":"urn:ogc:def:crs:EPSG::28992"},)"
+                           R"("CityObjects":{"t":{"type":"TINRelief","geometry":[{"type":"CompositeSurface","lod":1,)"
+                           R"("boundaries":[[[0,1,2]],[[0,2,3]]]}]}},)"
+                           R"("vertices":[[0.5,0.25,1.125],[2.5,0.25,1.125],[2.5,3.25,1.125],[0.5,3.25,1.125]]})";
   CityModelReport r;
   const TriangleSoup s = read_cityjson(write_file("v10.json", text), {}, &r);
   BOOST_TEST(r.format == "CityJSON 1.0");
   BOOST_TEST(r.lods_used == (std::map<std::string, std::size_t>{{"1", 1}}));
   BOOST_TEST(s.triangle_count() == 2u);
   BOOST_TEST(s.material_names == std::vector<std::string>{"TINRelief"});  // a ground name
-  BOOST_TEST(s.vertices[2].y() == 3.25);  // verbatim (exact binary fractions)
-  BOOST_TEST(vector_area(s, s.vertices[0]).z() == 6.0);  // 2 × 3 m, exact
+  BOOST_TEST(s.vertices[2].y() == 3.25);                                  // verbatim (exact binary fractions)
+  BOOST_TEST(vector_area(s, s.vertices[0]).z() == 6.0);                   // 2 × 3 m, exact
 }
 
 BOOST_AUTO_TEST_CASE(solid_multisolid_compositesolid_nesting_and_closed_cubes) {
@@ -551,7 +559,8 @@ BOOST_AUTO_TEST_CASE(solid_multisolid_compositesolid_nesting_and_closed_cubes) {
     const std::string values = multi ? "[[[0,1,2,2,2,2]]]" : "[[0,1,2,2,2,2]]";
     const std::string geometry = std::string(R"({"type":")") + type + R"(","lod":"1.2","boundaries":)" + boundaries +
                                  R"(,"semantics":{"surfaces":[{"type":"GroundSurface"},{"type":"RoofSurface"},)"
-                                 R"({"type":"WallSurface"}],"values":)" + values + "}}";
+                                 R"({"type":"WallSurface"}],"values":)" +
+                                 values + "}}";
     const TriangleSoup s = read_cityjson(write_file("solid.city.json", model(geometry, kCubeVertices)));
     BOOST_TEST_CONTEXT(type) {
       BOOST_TEST(s.triangle_count() == 12u);  // 6 quads
@@ -587,9 +596,8 @@ BOOST_AUTO_TEST_CASE(null_semantic_values_fall_back_to_the_object_type) {
 BOOST_AUTO_TEST_CASE(geometry_instance_places_the_template) {
   // Template: a 1 m × 1 m square at z = 0 (real template vertices); instance: scaled ×2 in x,
   // ×3 in y, then translated to the reference point vertex 0 = (85000, 446000, 7) m.
-  const std::string extra =
-      R"("geometry-templates":{"templates":[{"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2,3]]]}],)"
-      R"("vertices-templates":[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]},)";
+  const std::string extra = R"("geometry-templates":{"templates":[{"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2,3]]]}],)"
+                            R"("vertices-templates":[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]},)";
   const std::string geometry =
       R"({"type":"GeometryInstance","template":0,"boundaries":[0],"transformationMatrix":[2,0,0,0, 0,3,0,0, 0,0,1,0, 0,0,0,1]})";
   CityModelReport r;
@@ -600,11 +608,12 @@ BOOST_AUTO_TEST_CASE(geometry_instance_places_the_template) {
   BOOST_TEST(has_note(r, "1 geometry instances"));
   // Closed form: 2 × 3 = 6 m²; the far corner (1,1,0) maps to (2, 3, 0) + (85000, 446000, 7).
   BOOST_TEST(vector_area(s, Vec3(85000, 446000, 7)).z() == 6.0);
-  const bool far_corner = std::any_of(s.vertices.begin(), s.vertices.end(),
-                                      [](const Vec3& v) { return v == Vec3(85002, 446003, 7); });
+  const bool far_corner =
+      std::any_of(s.vertices.begin(), s.vertices.end(), [](const Vec3& v) { return v == Vec3(85002, 446003, 7); });
   BOOST_TEST(far_corner);
   // A template index out of range is an error naming the path.
-  const std::string bad = R"({"type":"GeometryInstance","template":3,"boundaries":[0],"transformationMatrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]})";
+  const std::string bad =
+      R"({"type":"GeometryInstance","template":3,"boundaries":[0],"transformationMatrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]})";
   const std::string e = error_of(write_file("bad_instance.city.json", model(bad, "[[0,0,0]]", extra)));
   BOOST_TEST(e.find("/CityObjects/b1/geometry/0/template") != std::string::npos, e);
   BOOST_TEST(e.find("out of range (1 templates)") != std::string::npos, e);
@@ -613,13 +622,14 @@ BOOST_AUTO_TEST_CASE(geometry_instance_places_the_template) {
 BOOST_AUTO_TEST_CASE(degenerate_rings_are_skipped_with_notes_not_errors) {
   // Surface 0: a ring of 2 distinct vertices (skipped); surface 1: a valid triangle closed by
   // repeating its first vertex; surface 2: a quad whose hole has 2 distinct vertices (hole dropped).
-  const std::string geometry =
-      R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,0]],[[0,1,2,0]],[[0,1,2,3],[4,5,4]]]})";
+  const std::string geometry = R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,0]],[[0,1,2,0]],[[0,1,2,3],[4,5,4]]]})";
   CityModelReport r;
   const TriangleSoup s = read_cityjson(write_file("degenerate.city.json", model(geometry, kCubeVertices)), {}, &r);
   BOOST_TEST(r.surfaces == 2u);
   BOOST_TEST(s.triangle_count() == 3u);  // 1 + 2
-  BOOST_TEST(has_note(r, "1 x surfaces skipped: outer ring with fewer than 3 distinct vertices (first: /CityObjects/b1/geometry/0/boundaries/0/0)"));
+  BOOST_TEST(has_note(
+      r,
+      "1 x surfaces skipped: outer ring with fewer than 3 distinct vertices (first: /CityObjects/b1/geometry/0/boundaries/0/0)"));
   BOOST_TEST(has_note(r, "inner rings (holes) skipped"));
   BOOST_TEST(has_note(r, "repeating their first vertex"));
 }
@@ -634,24 +644,34 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
   const std::string ok_geometry = R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2]]]})";
   const std::vector<Case> cases{
       {"not_json.city.json", "{\"type\": \"CityJSON\",\n \"version\": 2.0,, }", {"not_json.city.json", "not JSON", "line 2"}},
-      {"wrong_type.city.json", R"({"type":"FeatureCollection","features":[]})", {"/type", "\"FeatureCollection\" is not \"CityJSON\""}},
-      {"version.city.json", R"({"type":"CityJSON","version":"3.0","CityObjects":{},"vertices":[]})",
+      {"wrong_type.city.json",
+       R"({"type":"FeatureCollection","features":[]})",
+       {"/type", "\"FeatureCollection\" is not \"CityJSON\""}},
+      {"version.city.json",
+       R"({"type":"CityJSON","version":"3.0","CityObjects":{},"vertices":[]})",
        {"/version", "unsupported CityJSON version \"3.0\""}},
-      {"index.city.json", model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,99]]]})", kCubeVertices),
+      {"index.city.json",
+       model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,99]]]})", kCubeVertices),
        {"/CityObjects/b1/geometry/0/boundaries/0/0/2", "vertex index 99 out of range (8 vertices)"}},
-      {"negative_index.city.json", model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,-2]]]})", kCubeVertices),
+      {"negative_index.city.json",
+       model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,-2]]]})", kCubeVertices),
        {"/CityObjects/b1/geometry/0/boundaries/0/0/2", "vertex index -2 is not a non-negative integer"}},
-      {"non_integer.city.json", model(ok_geometry, "[[0,0,0],[1000,0,0],[0,1000.5,0]]"),
+      {"non_integer.city.json",
+       model(ok_geometry, "[[0,0,0],[1000,0,0],[0,1000.5,0]]"),
        {"/vertices/2/1", "coordinate 1000.5 is not an integer"}},
       {"huge.city.json", model(ok_geometry, "[[0,0,0],[1000,0,0],[0,18014398509481984,0]]"), {"/vertices/2/1", "exceeds 2^53"}},
-      {"nesting.city.json", model(R"({"type":"Solid","lod":"2","boundaries":[[[0,1,2]]]})", kCubeVertices),
+      {"nesting.city.json",
+       model(R"({"type":"Solid","lod":"2","boundaries":[[[0,1,2]]]})", kCubeVertices),
        {"/CityObjects/b1/geometry/0/boundaries/0/0/0", "0 is not an array of vertex indices"}},
-      {"unknown_geometry.city.json", model(R"({"type":"Polyhedron","lod":"2","boundaries":[]})", kCubeVertices),
+      {"unknown_geometry.city.json",
+       model(R"({"type":"Polyhedron","lod":"2","boundaries":[]})", kCubeVertices),
        {"/CityObjects/b1/geometry/0/type", "unknown geometry type \"Polyhedron\""}},
-      {"no_lod.city.json", model(R"({"type":"MultiSurface","boundaries":[[[0,1,2]]]})", kCubeVertices),
+      {"no_lod.city.json",
+       model(R"({"type":"MultiSurface","boundaries":[[[0,1,2]]]})", kCubeVertices),
        {"/CityObjects/b1/geometry/0/lod", "missing"}},
       {"bad_semantics.city.json",
-       model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2]]],"semantics":{"surfaces":[],"values":[4]}})", kCubeVertices),
+       model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2]]],"semantics":{"surfaces":[],"values":[4]}})",
+             kCubeVertices),
        {"/CityObjects/b1/geometry/0/semantics/values/0", "semantic value 4 is not an index into the 0 semantic surfaces"}},
       {"wgs84.city.json",
        R"({"type":"CityJSON","version":"1.0","metadata":{"referenceSystem":"urn:ogc:def:crs:EPSG::4326"},"CityObjects":{},"vertices":[]})",
@@ -660,14 +680,16 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],"translate":[0,0,0]},)"
        R"("metadata":{"referenceSystem":"https://www.opengis.net/def/crs/EPSG/0/6697"},"CityObjects":{},"vertices":[]})",
        {"EPSG:6697", "geographic"}},
-      {"empty.city.json", model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,0]]]})", kCubeVertices),
+      {"empty.city.json",
+       model(R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,0]]]})", kCubeVertices),
        {"empty.city.json: no triangles (1 objects"}},
       {"no_vertices.city.json", R"({"type":"CityJSON","version":"2.0","CityObjects":{}})", {"/vertices", "missing"}},
       {"bad_transform.city.json",
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0,0.001],"translate":[0,0,0]},"CityObjects":{},"vertices":[]})",
        {"/transform/scale/1", "scale 0"}},
       {"overflow.city.json",
-       R"({"type":"CityJSON","version":"1.0","CityObjects":{},"vertices":[[0,1e999,0]]})", {"not JSON", "number overflow", "1e999"}},
+       R"({"type":"CityJSON","version":"1.0","CityObjects":{},"vertices":[[0,1e999,0]]})",
+       {"not JSON", "number overflow", "1e999"}},
       {"inf.city.json",
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1e300,1,1],"translate":[0,0,0]},"CityObjects":{},)"
        R"("vertices":[[1000000000,0,0]]})",
@@ -676,10 +698,12 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],"translate":[0,0,0]},"CityObjects":{},"vertices":[]})"
        "\n"
        R"({"type":"CityJSONFeature","id":"f1","CityObjects":{"f1":{"type":"Building","geometry":[)" +
-           ok_geometry + R"(]}},"vertices":[[0,0,0],[1000,0,0],[0,1000,0]]})"
+           ok_geometry +
+           R"(]}},"vertices":[[0,0,0],[1000,0,0],[0,1000,0]]})"
            "\n"
            R"({"type":"CityJSONFeature","id":"f2","CityObjects":{"f2":{"type":"Building","geometry":[)" +
-           ok_geometry + R"(]}},"vertices":[[0,0,0],[1000,0,0]]})"
+           ok_geometry +
+           R"(]}},"vertices":[[0,0,0],[1000,0,0]]})"
            "\n",
        {"seq.city.jsonl:3: ", "/CityObjects/f2/geometry/0/boundaries/0/0/2", "vertex index 2 out of range (2 vertices)"}},
       {"seq_type.city.jsonl",
@@ -691,7 +715,8 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[1,1,1],"translate":[0,0,0]},"CityObjects":{},"vertices":[]})"
        "\n{oops}\n",
        {"seq_not_json.city.jsonl:2: not JSON"}},
-      {"seq_v10.city.jsonl", R"({"type":"CityJSON","version":"1.0","CityObjects":{},"vertices":[]})",
+      {"seq_v10.city.jsonl",
+       R"({"type":"CityJSON","version":"1.0","CityObjects":{},"vertices":[]})",
        {"seq_v10.city.jsonl:1: /version", "CityJSONSeq needs CityJSON 1.1 or 2.0"}},
   };
   for (const Case& c : cases) {
@@ -749,7 +774,8 @@ BOOST_AUTO_TEST_CASE(each_triangle_names_its_city_object) {
   // 2 triangles each), each triangle pointing at its own CityObject id.
   const std::string text =
       R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,0.001],"translate":[0,0,0]},)"
-      R"("CityObjects":{"a":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[)" + kCubeShell +
+      R"("CityObjects":{"a":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[)" +
+      kCubeShell +
       R"(]}]},"empty":{"type":"Building"},"b":{"type":"Building","geometry":[{"type":"Solid","lod":"1","boundaries":[)" +
       kCubeShell + R"(]}]}},"vertices":)" + kCubeVertices + "}";
   const TriangleSoup s = read_cityjson(write_file("objects.city.json", text));

@@ -1,12 +1,12 @@
 #define BOOST_TEST_MODULE epw_reader
 #include <boost/test/unit_test.hpp>
 
+#include <unistd.h>
 #include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "geometry/core/input_error.h"
@@ -35,15 +35,14 @@ struct TempDir {
 using Fields = std::array<std::string, 35>;
 
 struct EpwText {
-  std::vector<std::string> header = {
-      "LOCATION,Testville,ST,XYZ,synthetic,012345,40.0,-105.0,-7.0,1600.0",
-      "DESIGN CONDITIONS,0",
-      "TYPICAL/EXTREME PERIODS,0",
-      "GROUND TEMPERATURES,0",
-      "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0",
-      "COMMENTS 1,synthetic test file",
-      "COMMENTS 2,",
-      "DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31"};
+  std::vector<std::string> header = {"LOCATION,Testville,ST,XYZ,synthetic,012345,40.0,-105.0,-7.0,1600.0",
+                                     "DESIGN CONDITIONS,0",
+                                     "TYPICAL/EXTREME PERIODS,0",
+                                     "GROUND TEMPERATURES,0",
+                                     "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0",
+                                     "COMMENTS 1,synthetic test file",
+                                     "COMMENTS 2,",
+                                     "DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31"};
   std::vector<Fields> records;
   std::string eol = "\n";
 
@@ -63,10 +62,41 @@ struct EpwText {
 
 // One record with the other fields as in a real TMYx record (Heino, line 9), radiation zero.
 Fields record(int year, int month, int day, int hour) {
-  return {std::to_string(year), std::to_string(month), std::to_string(day), std::to_string(hour), "0",
-          "?9?9?9?9E0?9?9?9?9*9?9?9?9?9?9?9*9?9*9*9?9*9", "2.80", "0.90", "87", "101280", "0", "0", "229",
-          "0", "0", "0", "0", "0", "0", "0", "220", "4.00", "7", "9", "777.7", "77777", "9", "999999999", "11",
-          "0.0850", "0", "88", "0.140", "0.0", "0.0"};
+  return {std::to_string(year),
+          std::to_string(month),
+          std::to_string(day),
+          std::to_string(hour),
+          "0",
+          "?9?9?9?9E0?9?9?9?9*9?9?9?9?9?9?9*9?9*9*9?9*9",
+          "2.80",
+          "0.90",
+          "87",
+          "101280",
+          "0",
+          "0",
+          "229",
+          "0",
+          "0",
+          "0",
+          "0",
+          "0",
+          "0",
+          "0",
+          "220",
+          "4.00",
+          "7",
+          "9",
+          "777.7",
+          "77777",
+          "9",
+          "999999999",
+          "11",
+          "0.0850",
+          "0",
+          "88",
+          "0.140",
+          "0.0",
+          "0.0"};
 }
 
 // `hours` consecutive hourly records from (year, month, day) hour 1, the year advancing at the
@@ -103,7 +133,9 @@ std::string error_of(const fs::path& p) {
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 // Two days of records with a sunny noon, the base of the error cases (lines 9..56).
 EpwText two_days() {
@@ -269,7 +301,7 @@ BOOST_AUTO_TEST_CASE(leap_year_file_has_february_29_and_8784_records) {
 BOOST_AUTO_TEST_CASE(years_may_change_between_records_and_wrap_at_new_year) {
   TempDir d;
   EpwText e;
-  add_hours(e, 1999, 12, 31, 48);  // 12-31 of 1999, then 01-01 of 2000
+  add_hours(e, 1999, 12, 31, 48);                                                    // 12-31 of 1999, then 01-01 of 2000
   for (int i = 24; i < 48; ++i) e.records[static_cast<std::size_t>(i)][0] = "1977";  // a typical year's months
   const WeatherSeries s = read_epw(write(d, "wrap.epw", e.text()));
   BOOST_TEST(s.records.size() == 48u);
@@ -282,9 +314,9 @@ BOOST_AUTO_TEST_CASE(missing_codes_of_optional_fields_become_missing) {
   e.field(12, 17) = "999999";  // illuminance missing code (data dictionary: missing if >= 999900)
   e.field(12, 18) = "999900";
   e.field(12, 19) = "25000";
-  e.field(12, 8) = "99.9";    // dew point missing code
-  e.field(12, 33) = "999";    // albedo missing code
-  e.field(13, 33) = "1.5";    // albedo outside [0, 1]: invalid, treated as missing with a warning
+  e.field(12, 8) = "99.9";  // dew point missing code
+  e.field(12, 33) = "999";  // albedo missing code
+  e.field(13, 33) = "1.5";  // albedo outside [0, 1]: invalid, treated as missing with a warning
   e.field(14, 33) = "0.25";
   e.field(14, 8) = "-12.5";
   const fs::path p = write(d, "missing.epw", e.text());
@@ -355,8 +387,11 @@ BOOST_AUTO_TEST_CASE(errors_name_file_line_field_and_value) {
       {"hour 0", 0, 4, "0", {":9: field 4 (hour) = '0'", "1..24"}},
       {"fractional hour", 0, 4, "1.5", {":9: field 4 (hour) = '1.5'", "not an integer"}},
       {"minute 61", 0, 5, "61", {":9: field 5 (minute) = '61'"}},
-      {"hour skipped", 6, 4, "8", {":15: field 4 (hour) = '8'", "06-01 hour 8 does not follow 06-01 hour 6 on line 14",
-                                   "expected 06-01 hour 7"}},
+      {"hour skipped",
+       6,
+       4,
+       "8",
+       {":15: field 4 (hour) = '8'", "06-01 hour 8 does not follow 06-01 hour 6 on line 14", "expected 06-01 hour 7"}},
       {"hour repeated", 6, 4, "6", {":15: field 4 (hour) = '6'", "does not follow 06-01 hour 6"}},
       {"day skipped", 24, 3, "3", {":33: field 3 (day) = '3'", "does not follow 06-01 hour 24", "expected 06-02 hour 1"}},
       {"month jumps", 24, 2, "7", {":33: field 2 (month) = '7'", "does not follow 06-01 hour 24"}},
@@ -374,7 +409,8 @@ BOOST_AUTO_TEST_CASE(errors_name_file_line_field_and_value) {
       if (c.record >= 0) {
         e.field(static_cast<std::size_t>(c.record), c.field) = c.value;
       } else {
-        std::array<std::string, 10> loc = {"LOCATION", "Testville", "ST", "XYZ", "synthetic", "012345", "40.0", "-105.0", "-7.0", "1600.0"};
+        std::array<std::string, 10> loc = {"LOCATION", "Testville", "ST",     "XYZ",  "synthetic",
+                                           "012345",   "40.0",      "-105.0", "-7.0", "1600.0"};
         loc[static_cast<std::size_t>(c.field)] = c.value;
         e.header[0].clear();
         for (std::size_t k = 0; k < loc.size(); ++k) e.header[0] += (k ? "," : "") + loc[k];

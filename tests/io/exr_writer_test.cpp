@@ -24,7 +24,7 @@ std::vector<ImageLayer> make_layers(int w, int h) {
   ImageLayer b{"sun_diffuse", std::vector<float>(static_cast<std::size_t>(w * h * 3))};
   for (std::size_t i = 0; i < a.rgb.size(); ++i) {
     a.rgb[i] = static_cast<float>(0.001 * static_cast<double>(i) * static_cast<double>(i) + 1e-3);  // spans 6 decades
-    b.rgb[i] = static_cast<float>(std::sin(0.1 * static_cast<double>(i)));  // includes negatives
+    b.rgb[i] = static_cast<float>(std::sin(0.1 * static_cast<double>(i)));                          // includes negatives
   }
   return {a, b};
 }

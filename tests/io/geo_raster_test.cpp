@@ -122,8 +122,10 @@ BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
   const fs::path geo = write_text("geo.asc", "ncols 1\nnrows 1\nxllcorner 4\nyllcorner 52\ncellsize 0.001\n5\n");
   write_text("geo.prj", kWgs84Wkt);
   BOOST_TEST(error_of([&] { read_geo_raster(geo); }).find("geographic CRS") != std::string::npos);
-  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:4326", "--crs"); }).find("--crs: EPSG:4326 is a geographic CRS") != std::string::npos);
-  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:nonsense", "--crs"); }).find("unknown coordinate reference system") != std::string::npos);
+  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:4326", "--crs"); }).find("--crs: EPSG:4326 is a geographic CRS") !=
+             std::string::npos);
+  BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:nonsense", "--crs"); }).find("unknown coordinate reference system") !=
+             std::string::npos);
 
   // Too many pixels for the limit.
   BOOST_TEST(error_of([&] { read_geo_raster(rotated, 3); }).find("over the limit") != std::string::npos);

@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE mesh_reader
 #include <boost/test/unit_test.hpp>
 
+#include <unistd.h>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <bit>
@@ -11,7 +12,6 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
 
 #include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
@@ -37,7 +37,9 @@ std::string error_of(const fs::path& file) {
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 double triangle_area_sum(const TriangleSoup& s) {
   double a = 0;
@@ -396,8 +398,8 @@ BOOST_AUTO_TEST_CASE(truncated_files_load_or_fail_cleanly, *skyband::test::needs
   // Every prefix (in steps of 5 bytes) of small files of each format must either load or throw
   // InputError — never crash, hang or throw anything else. Also a PLY whose count lies.
   const fs::path dir = temp_dir();
-  const std::vector<fs::path> sources{kDegenerate / "cgal_nm_edges_triple.off", kMine / "features.obj",
-                                      kMine / "crlf.ply", kMine / "two_triangles.stl", kDegenerate / "val3dity_304_2.obj"};
+  const std::vector<fs::path> sources{kDegenerate / "cgal_nm_edges_triple.off", kMine / "features.obj", kMine / "crlf.ply",
+                                      kMine / "two_triangles.stl", kDegenerate / "val3dity_304_2.obj"};
   std::size_t loaded = 0, rejected = 0;
   for (const auto& src : sources) {
     std::ifstream in(src, std::ios::binary);
@@ -508,8 +510,9 @@ BOOST_AUTO_TEST_CASE(declared_counts_are_bounded_by_the_file_size) {
   const std::string off = error_of(dir / "counts.off");
   BOOST_TEST(contains(off, "counts.off:3: file ends after 1 of 4000000000 vertices"), off);
 
-  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
-                    "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   ply += std::string(12 * 3 + 13, '\0');
   write_bytes(dir / "lying.ply", ply);
   const std::string message = error_of(dir / "lying.ply");

@@ -32,7 +32,7 @@ BOOST_AUTO_TEST_CASE(tone_curve_hand_values) {
   // By hand: x = 1 → ACES (2.51 + 0.03)/(2.43 + 0.59 + 0.14) = 2.54/3.16 = 0.803797;
   // OETF 1.055·0.803797^(1/2.4) − 0.055 = 0.90823 → byte round(231.60) = 232.
   BOOST_TEST(std::abs(tone_map_channel(1.0, 1.0) - 0.90823) < 2e-5);
-  BOOST_TEST(std::abs(tone_map_channel(0.25, 4.0) - 0.90823) < 2e-5);  // exposure scales first
+  BOOST_TEST(std::abs(tone_map_channel(0.25, 4.0) - 0.90823) < 2e-5);   // exposure scales first
   BOOST_TEST(tone_map_channel(-3.0, 1.0) == 0.0);                       // negatives clamp to 0
   BOOST_TEST(tone_map_channel(1e9, 1.0) == 1.0, tt::tolerance(1e-12));  // saturates (rounding of 1.055 − 0.055)
 }

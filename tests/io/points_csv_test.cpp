@@ -1,11 +1,11 @@
 #define BOOST_TEST_MODULE points_csv
 #include <boost/test/unit_test.hpp>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <unistd.h>
 
 #include "geometry/core/input_error.h"
 #include "io/points_csv.h"
@@ -42,7 +42,9 @@ std::string error_of(const fs::path& p) {
   return "";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 }  // namespace
 

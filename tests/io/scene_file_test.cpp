@@ -58,7 +58,9 @@ std::string error_of(F&& f) {
   return {};
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 }  // namespace
 
@@ -71,7 +73,7 @@ BOOST_AUTO_TEST_CASE(parses_keys_and_defaults) {
   BOOST_TEST(s.camera.position.y() == -10.0);
   BOOST_TEST(s.sun_altitude_deg == 30.0);
   BOOST_TEST(s.sun_azimuth_deg == 200.0);
-  BOOST_TEST(s.bands == 64);       // documented defaults (scene_file.h)
+  BOOST_TEST(s.bands == 64);  // documented defaults (scene_file.h)
   BOOST_TEST(s.reuse_block == 32);
   BOOST_TEST(s.reuse_tolerance == 0.01);
   BOOST_TEST(s.samples == 1);
@@ -92,9 +94,9 @@ BOOST_AUTO_TEST_CASE(geometry_maps_usemtl_names) {
 }
 
 BOOST_AUTO_TEST_CASE(overrides_with_dotted_keys) {
-  const SceneDescription s = parse(kBase, {"sun.altitude_deg=17", "image.width=320", "sky.model=cie-12",
-                                           "materials.assign.facade=painted-wall", "quality.samples=4",
-                                           "camera.position=[1, -20, 3]", "image.exposure=0.5", "quality.visibility=bands"});
+  const SceneDescription s =
+      parse(kBase, {"sun.altitude_deg=17", "image.width=320", "sky.model=cie-12", "materials.assign.facade=painted-wall",
+                    "quality.samples=4", "camera.position=[1, -20, 3]", "image.exposure=0.5", "quality.visibility=bands"});
   BOOST_TEST((s.visibility == SkyFactorsMethod::bands));
   BOOST_TEST((parse(kBase, {"quality.visibility=exact"}).visibility == SkyFactorsMethod::exact));
   BOOST_TEST(s.sun_altitude_deg == 17.0);
@@ -113,8 +115,9 @@ BOOST_AUTO_TEST_CASE(sun_from_place_and_time) {
   // pressure/temperature of the example (820 mbar, 11 °C) are not scene keys, so refraction
   // differs by < 0.01°; ΔT is the scene default 69 s instead of 67 s (< 0.001°).
   std::string text = kBase;
-  text.replace(text.find("altitude_deg = 30\nazimuth_deg = 200\n"), 36,
-               "latitude_deg = 39.742476\nlongitude_deg = -105.1786\nelevation_m = 1830.14\ntime = \"2003-10-17T12:30:30-07:00\"\n");
+  text.replace(
+      text.find("altitude_deg = 30\nazimuth_deg = 200\n"), 36,
+      "latitude_deg = 39.742476\nlongitude_deg = -105.1786\nelevation_m = 1830.14\ntime = \"2003-10-17T12:30:30-07:00\"\n");
   const SceneDescription s = parse(text);
   BOOST_TEST(std::abs(s.sun_altitude_deg - (90.0 - 50.11162)) < 0.01);
   BOOST_TEST(std::abs(s.sun_azimuth_deg - 194.34024) < 0.01);
@@ -258,7 +261,8 @@ BOOST_AUTO_TEST_CASE(bytes_toml_must_not_see_are_errors) {
       {kBase + "# \xFF\n", {f + ":15:3:", "not valid UTF-8", "0xFF"}},
       {kBase + "# \xED\xA0\x80\n", {f + ":15:3:", "not valid UTF-8"}},  // a surrogate, U+D800
       {kBase + "\x01\n"s, {f + ":15:1:", "control character U+0001"}},
-      {kBase + "[quality]\nvisibility = \"\\u0000auto\"\n", {f + ":16:14:", "quality.visibility", "\\x00auto", "control character"}},
+      {kBase + "[quality]\nvisibility = \"\\u0000auto\"\n",
+       {f + ":16:14:", "quality.visibility", "\\x00auto", "control character"}},
       {kBase + "[sky]\nmodel = \"multiple\\\xC3\xA9\"\n", {f + ":16:18:", "not a TOML escape sequence"}},
       {kBase + "[sky]\nmodel = '''multiple''''''\n", {f + ":16:20:", "6 quotes"}},
   };
@@ -292,7 +296,8 @@ BOOST_AUTO_TEST_CASE(bytes_toml_must_not_see_are_errors) {
   BOOST_TEST(contains(set_msg, "sky.model '[}': unknown sky model"), set_msg);  // not TOML: a plain string
   // The same brackets where TOML allows them still parse: arrays of tables, nested and
   // multi-line arrays, a '[' inside a string, '}' closing an inline table inside an array.
-  const std::string ok = error_of([] { AsciiToml("v = [[1, 2], [\n 3, # c\n ], {a = 1}]\ns = \"[}\"\n[[list]]\nx = [ ]\n", "t"); });
+  const std::string ok =
+      error_of([] { AsciiToml("v = [[1, 2], [\n 3, # c\n ], {a = 1}]\ns = \"[}\"\n[[list]]\nx = [ ]\n", "t"); });
   BOOST_TEST(ok.empty(), ok);
   BOOST_TEST(contains(error_of([] { parse(kBase, {"quality.samples=2\nquality.bands=3"}); }), "control character"));
 }

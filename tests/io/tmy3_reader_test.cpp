@@ -17,9 +17,8 @@
 
 #include "geometry/core/input_error.h"
 #include "io/epw_reader.h"
-#include "io/tmy3_reader.h"
 #include "io/support/tmy3_csv.h"
-#include "shared_data.h"
+#include "io/tmy3_reader.h"
 #include "shared_data.h"
 
 using namespace skyband;
@@ -56,7 +55,8 @@ const std::string kSite = "725300,\"CHICAGO OHARE INTL AP\",IL,-6.0,41.983,-87.9
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series, *skyband::test::needs_shared_data()) {
-  const fs::path f = write_text("chicago_tmy3.csv", test::epw_as_tmy3(kChicago, "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n"));
+  const fs::path f =
+      write_text("chicago_tmy3.csv", test::epw_as_tmy3(kChicago, "725300,CHICAGO OHARE INTL AP,IL,-6.0,41.98,-87.92,201.0\n"));
   const WeatherSeries a = read_epw(kChicago), b = read_weather_file(f);
   BOOST_TEST(b.location.time_zone_hours == a.location.time_zone_hours);
   BOOST_TEST(b.location.latitude_deg == a.location.latitude_deg);
@@ -68,9 +68,10 @@ BOOST_AUTO_TEST_CASE(chicago_as_tmy3_csv_gives_the_epw_series, *skyband::test::n
     const WeatherRecord &x = a.records[i], &y = b.records[i];
     BOOST_TEST_REQUIRE((x.month == y.month && x.day == y.day && x.hour == y.hour && x.year == y.year), "record " << i);
     BOOST_TEST_REQUIRE((x.ghi_Wh_m2 == y.ghi_Wh_m2 && x.dni_Wh_m2 == y.dni_Wh_m2 && x.dhi_Wh_m2 == y.dhi_Wh_m2), "record " << i);
-    BOOST_TEST_REQUIRE((x.global_illuminance_lux == y.global_illuminance_lux && x.direct_illuminance_lux == y.direct_illuminance_lux &&
-                        x.diffuse_illuminance_lux == y.diffuse_illuminance_lux),
-                       "record " << i);
+    BOOST_TEST_REQUIRE(
+        (x.global_illuminance_lux == y.global_illuminance_lux && x.direct_illuminance_lux == y.direct_illuminance_lux &&
+         x.diffuse_illuminance_lux == y.diffuse_illuminance_lux),
+        "record " << i);
     BOOST_TEST_REQUIRE((x.dew_point_C == y.dew_point_C && x.albedo == y.albedo), "record " << i);
   }
   BOOST_TEST(b.warnings.empty());
@@ -93,7 +94,7 @@ BOOST_AUTO_TEST_CASE(hour_ending_records_and_missing_codes) {
   BOOST_TEST(*s.records[1].direct_illuminance_lux == 2000.0);
   BOOST_TEST(*s.records[1].dew_point_C == -7.5);
   BOOST_TEST(!s.records[1].albedo.has_value());  // 1.5: invalid, warned
-  BOOST_TEST(s.warnings.size() == 2u);            // a partial year, an invalid albedo
+  BOOST_TEST(s.warnings.size() == 2u);           // a partial year, an invalid albedo
 }
 
 BOOST_AUTO_TEST_CASE(day_month_and_year_wrap) {
@@ -103,12 +104,18 @@ BOOST_AUTO_TEST_CASE(day_month_and_year_wrap) {
   };
   // After February 28 comes February 29 (a leap-year file) or March 1; after December 31,
   // January 1 (of the next year: typical years mix years).
-  BOOST_TEST(read_tmy3_csv(write_text("leap.csv", csv + row("02/28/1988", "24:00") + row("02/29/1988", "01:00"))).records.size() == 2u);
-  BOOST_TEST(read_tmy3_csv(write_text("march.csv", csv + row("02/28/1987", "24:00") + row("03/01/1987", "01:00"))).records.size() == 2u);
-  BOOST_TEST(read_tmy3_csv(write_text("wrap.csv", csv + row("12/31/1988", "24:00") + row("01/01/1975", "01:00"))).records.size() == 2u);
+  BOOST_TEST(
+      read_tmy3_csv(write_text("leap.csv", csv + row("02/28/1988", "24:00") + row("02/29/1988", "01:00"))).records.size() == 2u);
+  BOOST_TEST(
+      read_tmy3_csv(write_text("march.csv", csv + row("02/28/1987", "24:00") + row("03/01/1987", "01:00"))).records.size() == 2u);
+  BOOST_TEST(
+      read_tmy3_csv(write_text("wrap.csv", csv + row("12/31/1988", "24:00") + row("01/01/1975", "01:00"))).records.size() == 2u);
   // 03/01 01:00 → 12/31 24:00 is not one hour on.
-  const std::string m = error_of([&] { read_tmy3_csv(write_text("gap.csv", csv + row("03/01/1988", "01:00") + row("12/31/1988", "24:00"))); });
-  BOOST_TEST(m.find("gap.csv:4: Date (MM/DD/YYYY) = '12/31/1988': the record does not follow the one on line 3") != std::string::npos, m);
+  const std::string m =
+      error_of([&] { read_tmy3_csv(write_text("gap.csv", csv + row("03/01/1988", "01:00") + row("12/31/1988", "24:00"))); });
+  BOOST_TEST(
+      m.find("gap.csv:4: Date (MM/DD/YYYY) = '12/31/1988': the record does not follow the one on line 3") != std::string::npos,
+      m);
 }
 
 BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
@@ -130,7 +137,8 @@ BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
        "nan.csv:3: DHI (W/m^2) = 'nan': not a number"},
       {"lux.csv", with("01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,200000,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
        "GH illum (lx) = '200000'"},
-      {"date.csv", with("13/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'13/01/1990': no such date"},
+      {"date.csv", with("13/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"),
+       "'13/01/1990': no such date"},
       {"time.csv", with("01/01/1990,00:30,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n"), "'00:30'"},
       {"short.csv", with("01/01/1990,01:00,0,0\n"), "short.csv:3: 4 fields for 31 columns"},
       {"tz.csv", "725300,X,IL,-26,41.98,-87.92,201\n" + std::string(test::kTmy3Header) + ok, "time zone = '-26'"},
@@ -140,6 +148,8 @@ BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
     BOOST_TEST(m.find(c.message) != std::string::npos, c.name << ": " << m);
   }
   // Neither format.
-  BOOST_TEST(error_of([&] { read_weather_file(write_text("other.csv", "a,b\n1,2\n")); }).find("neither an EPW file") != std::string::npos);
-  BOOST_TEST(error_of([&] { read_weather_file(temp_dir() / "missing.csv"); }).find("missing.csv: no such weather file") != std::string::npos);
+  BOOST_TEST(error_of([&] { read_weather_file(write_text("other.csv", "a,b\n1,2\n")); }).find("neither an EPW file") !=
+             std::string::npos);
+  BOOST_TEST(error_of([&] { read_weather_file(temp_dir() / "missing.csv"); }).find("missing.csv: no such weather file") !=
+             std::string::npos);
 }

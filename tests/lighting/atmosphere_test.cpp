@@ -12,8 +12,8 @@
 #include "geometry/core/input_error.h"
 #include "geometry/core/vec3.h"
 #include "lighting/atmosphere/atmosphere.h"
-#include "lighting/spectrum/colour.h"
 #include "lighting/atmosphere/phase_functions.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/sun/sun.h"
 #include "shared_data.h"
 
@@ -21,8 +21,12 @@ namespace tt = boost::test_tools;
 using namespace skyband;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
-int index_of_nm(double nm) { return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm)); }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
+int index_of_nm(double nm) {
+  return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm));
+}
 
 // Brute-force column lengths along a straight ray from radius r, direction cosine mu, to the top
 // of the atmosphere: midpoint rule with n steps in s (independent of the library's quadrature).
@@ -71,9 +75,11 @@ BOOST_AUTO_TEST_CASE(slant_and_grazing_columns_match_brute_force) {
   AtmosphereParams p;
   const Atmosphere atm(p);
   const double rg = atm.observer_radius_m();
-  struct Ray { double r, mu; };
-  const Ray rays[] = {{rg, 0.0}, {rg, std::sin(deg(1))}, {rg, std::sin(deg(4))}, {rg, 0.5},
-                      {rg + 3000.0, -0.02}, {rg + 20e3, -0.1}, {rg + 40e3, std::sin(deg(-5))}};
+  struct Ray {
+    double r, mu;
+  };
+  const Ray rays[] = {{rg, 0.0},         {rg, std::sin(deg(1))},        {rg, std::sin(deg(4))}, {rg, 0.5}, {rg + 3000.0, -0.02},
+                      {rg + 20e3, -0.1}, {rg + 40e3, std::sin(deg(-5))}};
   for (const Ray& ray : rays) {
     const ColumnLengths c = atm.column_to_top(ray.r, ray.mu);
     const ColumnLengths b = brute_force_column(ray.r, ray.mu, rg, p.aerosol_scale_height_m, 2000000);
@@ -246,8 +252,14 @@ BOOST_AUTO_TEST_CASE(sun_colour_versus_altitude) {
     const double klx = luminous(e) / 1000.0;
     if (a == 4.0) BOOST_TEST(*cct == 2610.0, tt::tolerance(0.12));
     if (a == 8.0) BOOST_TEST(*cct == 3430.0, tt::tolerance(0.12));
-    if (a == 17.0) { BOOST_TEST(*cct == 4310.0, tt::tolerance(0.08)); BOOST_TEST(klx == 61.3, tt::tolerance(0.15)); }
-    if (a == 60.0) { BOOST_TEST(*cct == 5230.0, tt::tolerance(0.08)); BOOST_TEST(klx == 102.1, tt::tolerance(0.15)); }
+    if (a == 17.0) {
+      BOOST_TEST(*cct == 4310.0, tt::tolerance(0.08));
+      BOOST_TEST(klx == 61.3, tt::tolerance(0.15));
+    }
+    if (a == 60.0) {
+      BOOST_TEST(*cct == 5230.0, tt::tolerance(0.08));
+      BOOST_TEST(klx == 102.1, tt::tolerance(0.15));
+    }
   }
 }
 
@@ -303,16 +315,16 @@ BOOST_AUTO_TEST_CASE(direct_spectrum_matches_astm_g173_at_air_mass_1_5, *skyband
     for (int j = 0; j < nb; ++j) {
       const double phi = 2.0 * kPi * (j + 0.5) / nb;
       const Vec3 v = std::cos(t) * sun + std::sin(t) * (std::cos(phi) * e1 + std::sin(phi) * e2);
-      circ += atm.sky_radiance(v, sun, ScatteringOrders::Multiple) *
-              (std::cos(t) * std::sin(t) * (a1 - a0) / na * 2.0 * kPi / nb);
+      circ +=
+          atm.sky_radiance(v, sun, ScatteringOrders::Multiple) * (std::cos(t) * std::sin(t) * (a1 - a0) / na * 2.0 * kPi / nb);
     }
   }
   for (double nm = 450; nm <= 670; nm += 10) {
     const int i = index_of_nm(nm);
     const double model = dn[i] + circ[i];
     const double ref = bin_mean(nm);
-    BOOST_TEST_MESSAGE(nm << " nm: model " << dn[i] << " + circumsolar " << circ[i] << " vs G173 " << ref
-                          << " (" << 100.0 * (model / ref - 1.0) << "%)");
+    BOOST_TEST_MESSAGE(nm << " nm: model " << dn[i] << " + circumsolar " << circ[i] << " vs G173 " << ref << " ("
+                          << 100.0 * (model / ref - 1.0) << "%)");
     BOOST_TEST(model == ref, tt::tolerance(0.05));
   }
 }

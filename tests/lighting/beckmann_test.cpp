@@ -41,8 +41,7 @@ BOOST_AUTO_TEST_CASE(closed_form_values) {
   for (double m : {0.05, 0.3}) {
     BOOST_TEST(beckmann_d(1.0, m) == 1.0 / (kPi * m * m), tt::tolerance(1e-14));
     const double t = 0.2, c = std::cos(t);
-    BOOST_TEST(beckmann_d(c, m) * kPi * m * m * std::pow(c, 4) == std::exp(-std::pow(std::tan(t) / m, 2)),
-               tt::tolerance(1e-12));
+    BOOST_TEST(beckmann_d(c, m) * kPi * m * m * std::pow(c, 4) == std::exp(-std::pow(std::tan(t) / m, 2)), tt::tolerance(1e-12));
   }
   BOOST_TEST(beckmann_d(0.0, 0.3) == 0.0);
   BOOST_TEST(beckmann_d(-0.5, 0.3) == 0.0);

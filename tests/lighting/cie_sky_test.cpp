@@ -31,8 +31,8 @@ double horizontal_integral(const CieSky& sky, int nz = 1200, int na = 2400) {
 }
 
 CieSky make(int type, double sun_alt_deg, double sun_az_deg = 180.0) {
-  const Vec3 s(std::sin(sun_az_deg * kDeg) * std::cos(sun_alt_deg * kDeg), std::cos(sun_az_deg * kDeg) * std::cos(sun_alt_deg * kDeg),
-               std::sin(sun_alt_deg * kDeg));
+  const Vec3 s(std::sin(sun_az_deg * kDeg) * std::cos(sun_alt_deg * kDeg),
+               std::cos(sun_az_deg * kDeg) * std::cos(sun_alt_deg * kDeg), std::sin(sun_alt_deg * kDeg));
   return CieSky(type, s, 1000.0, cie_d65());
 }
 }  // namespace

@@ -17,8 +17,8 @@
 #include "geometry/mesh/scene.h"
 #include "io/epw_reader.h"
 #include "lighting/climate/climate_irradiation.h"
-#include "lighting/sky/perez_sky.h"
 #include "lighting/climate/weather_hours.h"
+#include "lighting/sky/perez_sky.h"
 #include "lighting/support/perez_transposition.h"
 #include "shared_data.h"
 
@@ -27,7 +27,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path weather(const char* name) { return fs::path(SKYBAND_SHARED_DATA) / "weather" / name; }
+fs::path weather(const char* name) {
+  return fs::path(SKYBAND_SHARED_DATA) / "weather" / name;
+}
 
 const std::vector<WeatherHour>& chicago() {
   static const std::vector<WeatherHour> h = weather_hours(read_epw(weather("USA_IL_Chicago-OHare.725300_TMY3.epw")), {});
@@ -105,10 +107,10 @@ BOOST_AUTO_TEST_CASE(tilted_planes_against_the_perez_1990_transposition, *skyban
         continue;
       }
       const double sun_az_deg = std::atan2(h.sun_dir.x(), h.sun_dir.y()) * 180 / kPi;
-      sky90 += h.hours * test::perez1990_sky_diffuse(tilt, az, h.dhi_W_m2, h.dni_W_m2,
-                                                     extraterrestrial_normal_irradiance_W_m2(h.day_of_year),
-                                                     zenith_rad * 180 / kPi, sun_az_deg, relative_air_mass_kasten_young(zenith_rad))
-                                 .sky_diffuse;
+      sky90 += h.hours * test::perez1990_sky_diffuse(
+                             tilt, az, h.dhi_W_m2, h.dni_W_m2, extraterrestrial_normal_irradiance_W_m2(h.day_of_year),
+                             zenith_rad * 180 / kPi, sun_az_deg, relative_air_mass_kasten_young(zenith_rad))
+                             .sky_diffuse;
     }
     const PointClimate& r = run.points[i];
     BOOST_TEST(r.ground_view == (1 - std::cos(tilt * kPi / 180)) / 2, boost::test_tools::tolerance(1e-9));
@@ -178,7 +180,8 @@ BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_threads, *skyband::test::need
 
 // --sun-at: the sun at the end of an hour (fraction 1) is the sun at the start of the next one
 // (fraction 0) — the same instant, also across midnight (hour 24's end is the next day's 00:00)
-// wherever both records are of the same year; the default, the middle, is neither. Out-of-range fractions are errors naming the flag.
+// wherever both records are of the same year; the default, the middle, is neither. Out-of-range fractions are errors naming the
+// flag.
 BOOST_AUTO_TEST_CASE(sun_placed_within_the_interval, *skyband::test::needs_shared_data()) {
   const WeatherSeries series = read_epw(weather("USA_IL_Chicago-OHare.725300_TMY3.epw"));
   WeatherHoursOptions start, end;
@@ -194,7 +197,7 @@ BOOST_AUTO_TEST_CASE(sun_placed_within_the_interval, *skyband::test::needs_share
     ++compared;
   }
   BOOST_TEST(compared > 8700u);
-  BOOST_TEST(worst < 1e-9);  // one instant computed from two dates: SPA rounding only
+  BOOST_TEST(worst < 1e-9);                                   // one instant computed from two dates: SPA rounding only
   BOOST_TEST((m[12].sun_dir - s[12].sun_dir).norm() > 0.01);  // half an hour apart: ~0.13 rad
   WeatherHoursOptions bad;
   bad.sun_fraction = 1.5;

@@ -10,7 +10,9 @@ namespace tt = boost::test_tools;
 using namespace skyband;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 
 Vec3 spherical(double theta, double phi) {
   return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
@@ -44,10 +46,8 @@ double albedo_light_space(double m, double theta_v, int n) {
 BOOST_AUTO_TEST_CASE(white_furnace_table) {
   const double ms[] = {0.1, 0.2, 0.3, 0.5};
   const double tv[] = {0, 30, 60, 75};
-  const double table[4][4] = {{1.000, 1.000, 0.999, 0.970},
-                              {1.000, 0.999, 0.966, 0.928},
-                              {0.996, 0.981, 0.925, 0.927},
-                              {0.892, 0.875, 0.887, 0.934}};
+  const double table[4][4] = {
+      {1.000, 1.000, 0.999, 0.970}, {1.000, 0.999, 0.966, 0.928}, {0.996, 0.981, 0.925, 0.927}, {0.892, 0.875, 0.887, 0.934}};
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
       const double a = cook_torrance_albedo(ms[i], deg(tv[j]));
@@ -82,8 +82,7 @@ BOOST_AUTO_TEST_CASE(paper_scale) {
   const double fs = cook_torrance_fs(n, l, v, 0.3, 0.7);
   BOOST_TEST(fs > 0.0);
   BOOST_TEST(cook_torrance_fs(n, l, v, 0.3, 0.7, true) == 4.0 * fs, tt::tolerance(1e-14));
-  BOOST_TEST(cook_torrance_albedo(0.1, 0.0, 300, true) == 4.0 * cook_torrance_albedo(0.1, 0.0, 300),
-             tt::tolerance(1e-14));
+  BOOST_TEST(cook_torrance_albedo(0.1, 0.0, 300, true) == 4.0 * cook_torrance_albedo(0.1, 0.0, 300), tt::tolerance(1e-14));
   // Directly from the paper's formula with D_CT = exp(−tan²α/m²)/(m² cos⁴α):
   MicrofacetCosines c;
   BOOST_REQUIRE(microfacet_cosines(n, l, v, c));

@@ -35,8 +35,12 @@ double dot_sky(const std::vector<float>& dc, double (*sky)(const Vec3&)) {
   return e;
 }
 
-double uniform(const Vec3& d) { return d.z() > 0 ? 1.0 : 0.0; }
-double height(const Vec3& d) { return std::max(0.0, d.z()); }
+double uniform(const Vec3& d) {
+  return d.z() > 0 ? 1.0 : 0.0;
+}
+double height(const Vec3& d) {
+  return std::max(0.0, d.z());
+}
 
 }  // namespace
 
@@ -69,6 +73,7 @@ BOOST_AUTO_TEST_CASE(occluded_points_give_pi_times_their_svf) {
     daylight_coefficients(sky, VisibilityOptions{}, dc);
     // Absolute, in SVF units: the lines' δ discretisation (64 lines, doubled at most twice towards
     // the tolerance 5e-4) and the hats' quadrature.
-    BOOST_TEST(std::abs(dot_sky(dc, uniform) / kPi - sky.factors.svf) < 1e-3, dot_sky(dc, uniform) / kPi << " vs " << sky.factors.svf);
+    BOOST_TEST(std::abs(dot_sky(dc, uniform) / kPi - sky.factors.svf) < 1e-3,
+               dot_sky(dc, uniform) / kPi << " vs " << sky.factors.svf);
   }
 }

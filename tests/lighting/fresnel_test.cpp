@@ -11,7 +11,9 @@ namespace tt = boost::test_tools;
 using namespace skyband;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 }  // namespace
 
 // n = 1.5 at normal incidence: ((n − 1)/(n + 1))² = 0.04 exactly (closed form).

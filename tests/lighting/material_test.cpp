@@ -17,7 +17,9 @@ namespace {
 Vec3 spherical(double theta, double phi) {
   return Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
 }
-int index_of_nm(double nm) { return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm)); }
+int index_of_nm(double nm) {
+  return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm));
+}
 
 // Directional albedo ∫ f(L, V) cos θ_l dω at one wavelength by midpoint quadrature in (θ, φ),
 // 500 × 2000 cells (0.18°). Used only for bounds (≤ 1): its O(1/n) error (~1e-3 for the
@@ -38,8 +40,8 @@ double albedo(const Material& m, double theta_v, int channel) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(all_named_materials_exist) {
-  for (const char* name : {"diffuse-wall", "painted-wall", "ceramic-tile", "aluminium-panel", "window-glass",
-                           "window-frame", "ground"}) {
+  for (const char* name :
+       {"diffuse-wall", "painted-wall", "ceramic-tile", "aluminium-panel", "window-glass", "window-frame", "ground"}) {
     const Material& m = find_material(name);
     BOOST_TEST(m.name == name);
     BOOST_TEST(!m.provenance.empty());
@@ -135,8 +137,8 @@ BOOST_AUTO_TEST_CASE(sun_shading) {
   // Fresnel comes from the 257-node table: relative error ≤ 1e-4 (fresnel_test).
   BOOST_TEST(total[c] == expected, tt::tolerance(1e-4));
   BOOST_TEST(sun_reflected_radiance(m, n, s, v, e_dn, false)[c] == 0.0);
-  BOOST_TEST(sun_reflected_radiance(m, n, spherical(1.7, 0), v, e_dn, true)[c] == 0.0);   // sun below
-  BOOST_TEST(sun_reflected_radiance(m, n, s, spherical(1.7, 0), e_dn, true)[c] == 0.0);   // view behind
+  BOOST_TEST(sun_reflected_radiance(m, n, spherical(1.7, 0), v, e_dn, true)[c] == 0.0);  // sun below
+  BOOST_TEST(sun_reflected_radiance(m, n, s, spherical(1.7, 0), e_dn, true)[c] == 0.0);  // view behind
   BOOST_TEST(sun_specular_radiance(find_material("ground"), n, s, v, e_dn, true)[c] == 0.0);
   // paper_scale quadruples only the specular part.
   const Spectrum spec = sun_specular_radiance(m, n, s, v, e_dn, true);

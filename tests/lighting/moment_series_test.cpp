@@ -45,7 +45,7 @@ BOOST_AUTO_TEST_CASE(one_day_in_steps_at_their_middles) {
   BOOST_TEST(m.size() == 144u);  // 24 h / 10 min
   BOOST_TEST(total_hours(m) == 24.0, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(m.front().time.hour == 0);
-  BOOST_TEST(m.front().time.minute == 5);  // the middle of 00:00–00:10
+  BOOST_TEST(m.front().time.minute == 5);              // the middle of 00:00–00:10
   BOOST_TEST(m.front().time.utc_offset_hours == 2.0);  // CEST
   BOOST_TEST(m.back().time.hour == 23);
   BOOST_TEST(m.back().time.minute == 55);
@@ -58,8 +58,8 @@ BOOST_AUTO_TEST_CASE(daylight_saving_days_have_23_and_25_hours) {
   BOOST_TEST(total_hours(spring) == 23.0, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(spring.front().time.utc_offset_hours == 1.0);
   BOOST_TEST(spring.back().time.utc_offset_hours == 2.0);
-  BOOST_TEST(spring[1].time.hour == 1);   // 01:30 CET
-  BOOST_TEST(spring[2].time.hour == 3);   // 03:30 CEST: 02:00–03:00 does not exist that night
+  BOOST_TEST(spring[1].time.hour == 1);  // 01:30 CET
+  BOOST_TEST(spring[2].time.hour == 3);  // 03:30 CEST: 02:00–03:00 does not exist that night
   const auto autumn = moment_series(day("2026-10-25", "2026-10-25", 60, "Europe/Amsterdam"));
   BOOST_TEST(autumn.size() == 25u);
   BOOST_TEST(total_hours(autumn) == 25.0, boost::test_tools::tolerance(1e-12));

@@ -42,7 +42,8 @@ BOOST_AUTO_TEST_CASE(ladybug_worked_example) {
   BOOST_TEST(e.zenith_luminance_cd_m2 == 9056.0109, tt::tolerance(1e-8));
   // With the paper's W (0.07) only the W terms change: Δη_g = b_6 ΔW, b_6 = 1.39 (Table 4).
   const PerezIlluminance p = perez_illuminance(ghi, c, precipitable_water_cm(15));
-  BOOST_TEST((e.global_horizontal_lux - p.global_horizontal_lux) / ghi == 1.39 * (w_ladybug - precipitable_water_cm(15)), tt::tolerance(1e-10));
+  BOOST_TEST((e.global_horizontal_lux - p.global_horizontal_lux) / ghi == 1.39 * (w_ladybug - precipitable_water_cm(15)),
+             tt::tolerance(1e-10));
 }
 
 BOOST_AUTO_TEST_CASE(global_efficacy_plausible_for_typical_skies) {
@@ -78,7 +79,8 @@ BOOST_AUTO_TEST_CASE(direct_efficacy_clamped_at_zero_for_low_sun) {
   BOOST_TEST(raw < 0);
   BOOST_TEST(perez_luminous_efficacy(0, 2.0, 0.5 * kPi, 0.1).direct_lm_W == 0.0);
   // Bin 8, Z = 0, W = 2, Δ = 0.1: 101.18 + 1.58·2 − 1.10 e^−5 − 8.29·0.1 (Table 4 row 8).
-  BOOST_TEST(perez_luminous_efficacy(7, 2.0, 0.0, 0.1).direct_lm_W == 101.18 + 3.16 - 1.10 * std::exp(-5.0) - 0.829, tt::tolerance(1e-13));
+  BOOST_TEST(perez_luminous_efficacy(7, 2.0, 0.0, 0.1).direct_lm_W == 101.18 + 3.16 - 1.10 * std::exp(-5.0) - 0.829,
+             tt::tolerance(1e-13));
 }
 
 BOOST_AUTO_TEST_CASE(illuminance_uses_the_condition) {

@@ -110,7 +110,9 @@ double plane_integral_brute(const PerezSky& sky, const Vec3& n, double tol) {
   return adaptive_pieces(row, br, tol);
 }
 
-double horizontal_integral_brute(const PerezSky& sky, double tol) { return plane_integral_brute(sky, Vec3(0, 0, 1), tol); }
+double horizontal_integral_brute(const PerezSky& sky, double tol) {
+  return plane_integral_brute(sky, Vec3(0, 0, 1), tol);
+}
 
 // DNI that puts ε at `eps` for DHI and zenith Z (Perez90 eq. 1 solved for DNI).
 double dni_for_clearness(double eps, double dhi, double zenith_rad) {
@@ -288,8 +290,8 @@ BOOST_AUTO_TEST_CASE(normalisation_matches_brute_force_integration) {
     const PerezSky sky = make_test_sky(t);
     BOOST_TEST_REQUIRE(sky.scale > 0);
     const double brute = horizontal_integral_brute(sky, 1e-12 * t.dhi);
-    BOOST_TEST_MESSAGE(t.what << ": bin " << sky.condition.bin + 1 << " Delta " << sky.condition.brightness << "  brute/DHI - 1 = "
-                              << brute / t.dhi - 1);
+    BOOST_TEST_MESSAGE(t.what << ": bin " << sky.condition.bin + 1 << " Delta " << sky.condition.brightness
+                              << "  brute/DHI - 1 = " << brute / t.dhi - 1);
     BOOST_TEST(brute == t.dhi, tt::tolerance(1e-9));
   }
 }
@@ -336,7 +338,8 @@ BOOST_AUTO_TEST_CASE(quadrature_converges_and_timing) {
     const auto t0 = std::chrono::steady_clock::now();
     for (int r = 0; r < 20; ++r)
       for (std::size_t i = 0; i < conds.size(); ++i) sink += make_perez_sky(conds[i], suns[i], 100.0).scale;
-    best = std::min(best, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / (20.0 * conds.size()));
+    best = std::min(
+        best, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() / (20.0 * conds.size()));
   }
   BOOST_TEST_MESSAGE("make_perez_sky: " << best << " us per call (mean over the test skies, best of 5)");
   BOOST_TEST(sink > 0);
@@ -350,7 +353,8 @@ BOOST_AUTO_TEST_CASE(clamped_corners_stay_finite_and_normalised) {
     int bin;
     double delta, zenith_deg;
   };
-  for (const Corner& cc : {Corner{6, 0.6, 0.0}, Corner{3, 0.6, 0.0}, Corner{5, 0.6, 89.0}, Corner{7, 0.6, 85.0}, Corner{5, 0.01, 30.0}}) {
+  for (const Corner& cc :
+       {Corner{6, 0.6, 0.0}, Corner{3, 0.6, 0.0}, Corner{5, 0.6, 89.0}, Corner{7, 0.6, 85.0}, Corner{5, 0.01, 30.0}}) {
     PerezSkyCondition c;
     c.dhi_W_m2 = 100;
     c.bin = cc.bin;
@@ -361,7 +365,8 @@ BOOST_AUTO_TEST_CASE(clamped_corners_stay_finite_and_normalised) {
     BOOST_TEST_REQUIRE(sky.scale > 0);
     BOOST_TEST(sky.coefficients.b <= 0);
     const double brute = horizontal_integral_brute(sky, 1e-9 * 100);
-    BOOST_TEST_MESSAGE("corner bin " << cc.bin + 1 << " Delta " << cc.delta << " Z " << cc.zenith_deg << ": brute/DHI - 1 = " << brute / 100 - 1);
+    BOOST_TEST_MESSAGE("corner bin " << cc.bin + 1 << " Delta " << cc.delta << " Z " << cc.zenith_deg
+                                     << ": brute/DHI - 1 = " << brute / 100 - 1);
     BOOST_TEST(brute == 100.0, tt::tolerance(1e-7));
   }
 }
@@ -513,8 +518,8 @@ struct PlaneCompare {
   double rel_total() const { return (ours - theirs) / total; }
 };
 
-PlaneCompare compare_on_plane(double dhi, double dni, double dni_extra, double zen_deg, double az_deg, double air_mass, double tilt,
-                              double plane_az) {
+PlaneCompare compare_on_plane(double dhi, double dni, double dni_extra, double zen_deg, double az_deg, double air_mass,
+                              double tilt, double plane_az) {
   const PerezSkyCondition c = perez_sky_condition(dhi, dni, zen_deg * kDeg, air_mass, dni_extra);
   const PerezSky sky = make_perez_sky(c, sun_from_zenith_azimuth_deg(zen_deg, az_deg), dhi);
   const double ours = plane_integral_brute(sky, plane_normal(tilt, plane_az), 1e-9 * dhi);
@@ -548,20 +553,22 @@ BOOST_AUTO_TEST_CASE(tilted_planes_against_perez1990_pvlib_inputs, *skyband::tes
   // ones, checked in perez_transposition_test).
   double worst_d = 0, worst_t = 0;
   const auto check = [&](const char* what, int i, const PlaneCompare& r) {
-    BOOST_TEST_MESSAGE(what << " " << i << ": ours " << r.ours << " Perez1990 " << r.theirs << "  rel(diffuse) " << r.rel_diffuse()
-                            << "  rel(total) " << r.rel_total());
+    BOOST_TEST_MESSAGE(what << " " << i << ": ours " << r.ours << " Perez1990 " << r.theirs << "  rel(diffuse) "
+                            << r.rel_diffuse() << "  rel(total) " << r.rel_total());
     worst_d = std::max(worst_d, std::abs(r.rel_diffuse()));
     worst_t = std::max(worst_t, std::abs(r.rel_total()));
     BOOST_TEST(std::abs(r.rel_diffuse()) < 0.13);  // observed worst 0.112 (Goodwin Creek hour 0)
     BOOST_TEST(std::abs(r.rel_total()) < 0.08);    // observed worst 0.073 (same hour)
   };
   for (int i = 1; i <= 3; ++i)
-    check("pvlib hour", i, compare_on_plane(in["dhi"][i], in["dni"][i], in["dni_extra"][i], in["apparent_zenith"][i], in["azimuth"][i],
-                                            in["relative_airmass"][i], 40, 180));
+    check("pvlib hour", i,
+          compare_on_plane(in["dhi"][i], in["dni"][i], in["dni_extra"][i], in["apparent_zenith"][i], in["azimuth"][i],
+                           in["relative_airmass"][i], 40, 180));
   const auto& n = j["perez_negative_horizon_case"];
   for (int i = 0; i < 5; ++i)
-    check("Goodwin Creek", i, compare_on_plane(n["dhi"][i], n["dni"][i], n["dni_extra"][i], n["solar_zenith"][i], n["solar_azimuth"][i],
-                                               n["airmass"][i], 34, 180));
+    check("Goodwin Creek", i,
+          compare_on_plane(n["dhi"][i], n["dni"][i], n["dni_extra"][i], n["solar_zenith"][i], n["solar_azimuth"][i],
+                           n["airmass"][i], 34, 180));
   BOOST_TEST_MESSAGE("pvlib inputs: worst |rel(diffuse)| " << worst_d << ", worst |rel(total)| " << worst_t);
 }
 
@@ -596,9 +603,9 @@ BOOST_AUTO_TEST_CASE(tilted_planes_against_perez1990_orientations) {
         }
         worst_total[ti][ai] = std::max(worst_total[ti][ai], std::abs(r.rel_total()));
         worst_diffuse[ti][ai] = std::max(worst_diffuse[ti][ai], std::abs(r.rel_diffuse()));
-        BOOST_TEST_MESSAGE("sky (DHI " << h.dhi << ", DNI " << h.dni << ", Z " << h.zen << ") tilt " << tilt << " az " << paz << ": ours "
-                                       << r.ours << " Perez1990 " << r.theirs << "  rel(diffuse) " << r.rel_diffuse() << "  rel(total) "
-                                       << r.rel_total());
+        BOOST_TEST_MESSAGE("sky (DHI " << h.dhi << ", DNI " << h.dni << ", Z " << h.zen << ") tilt " << tilt << " az " << paz
+                                       << ": ours " << r.ours << " Perez1990 " << r.theirs << "  rel(diffuse) " << r.rel_diffuse()
+                                       << "  rel(total) " << r.rel_total());
         BOOST_TEST(std::abs(r.rel_total()) <= bound_total[ti]);
         BOOST_TEST(std::abs(r.rel_diffuse()) <= bound_diffuse[ti]);
       }

@@ -26,7 +26,9 @@ nlohmann::json reference() {
   return nlohmann::json::parse(in);
 }
 
-double num(const nlohmann::json& v) { return v.is_null() ? std::nan("") : v.get<double>(); }
+double num(const nlohmann::json& v) {
+  return v.is_null() ? std::nan("") : v.get<double>();
+}
 
 }  // namespace
 
@@ -50,8 +52,8 @@ BOOST_AUTO_TEST_CASE(poa_components_exact, *skyband::test::needs_shared_data()) 
   const auto& in = j["inputs"];
   const auto& ex = j["cases_surface_tilt40_azimuth180"]["poa_components_perez_plus_sand_ground"];
   for (int i = 0; i < 4; ++i) {
-    const Perez1990Diffuse d = perez1990_sky_diffuse(40, 180, in["dhi"][i], in["dni"][i], in["dni_extra"][i], in["apparent_zenith"][i],
-                                                     in["azimuth"][i], num(in["relative_airmass"][i]));
+    const Perez1990Diffuse d = perez1990_sky_diffuse(40, 180, in["dhi"][i], in["dni"][i], in["dni_extra"][i],
+                                                     in["apparent_zenith"][i], in["azimuth"][i], num(in["relative_airmass"][i]));
     const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-7 * std::abs(b) + 1e-6; };
     BOOST_TEST(close(d.sky_diffuse, num(ex["poa_sky_diffuse"][i])), "hour " << i << " sky " << d.sky_diffuse);
     BOOST_TEST(close(d.isotropic, num(ex["perez_isotropic"][i])), "hour " << i << " iso " << d.isotropic);
@@ -59,7 +61,8 @@ BOOST_AUTO_TEST_CASE(poa_components_exact, *skyband::test::needs_shared_data()) 
     BOOST_TEST(close(d.horizon, num(ex["perez_horizon"][i])), "hour " << i << " hor " << d.horizon);
   }
   // test_perez_scalar: assert_allclose (rtol 1e-7) to 109.084332.
-  const Perez1990Diffuse s = perez1990_sky_diffuse(40, 180, 118.45831879, 939.95469881, 1321.1655834833093, 10.56413562, 144.76567754, 1.01688136);
+  const Perez1990Diffuse s =
+      perez1990_sky_diffuse(40, 180, 118.45831879, 939.95469881, 1321.1655834833093, 10.56413562, 144.76567754, 1.01688136);
   BOOST_TEST(s.sky_diffuse == 109.084332, tt::tolerance(1e-7));
 }
 
@@ -70,8 +73,8 @@ BOOST_AUTO_TEST_CASE(perez_test_with_nan_dni_two_decimals, *skyband::test::needs
   const auto& in = j["inputs"];
   const auto& ex = j["cases_surface_tilt40_azimuth180"]["perez_allsitescomposite1990_with_dni_index2_set_to_NaN"];
   for (int i : {0, 1, 3}) {
-    const Perez1990Diffuse d = perez1990_sky_diffuse(40, 180, in["dhi"][i], in["dni"][i], in["dni_extra"][i], in["apparent_zenith"][i],
-                                                     in["azimuth"][i], num(in["relative_airmass"][i]));
+    const Perez1990Diffuse d = perez1990_sky_diffuse(40, 180, in["dhi"][i], in["dni"][i], in["dni_extra"][i],
+                                                     in["apparent_zenith"][i], in["azimuth"][i], num(in["relative_airmass"][i]));
     BOOST_TEST(std::abs(d.sky_diffuse - num(ex["sky_diffuse"][i])) < 0.005);
     BOOST_TEST(std::abs(d.isotropic - num(ex["isotropic"][i])) < 0.005);
     BOOST_TEST(std::abs(d.circumsolar - num(ex["circumsolar"][i])) < 0.005);

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <random>
 
-#include "geometry/core/input_error.h"
 #include "geometry/bands/sky_integral.h"
-#include "lighting/spectrum/colour.h"
+#include "geometry/core/input_error.h"
 #include "lighting/integrals/point_irradiance.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/sun/sun.h"
 
 namespace tt = boost::test_tools;
@@ -29,7 +29,9 @@ TriangleSoup cube() {
   return soup;
 }
 
-QueryPoint at(double x, double y, double z, Vec3 n = Vec3(0, 0, 1)) { return QueryPoint{Vec3(x, y, z), n.normalized()}; }
+QueryPoint at(double x, double y, double z, Vec3 n = Vec3(0, 0, 1)) {
+  return QueryPoint{Vec3(x, y, z), n.normalized()};
+}
 
 // Random boxes standing on z = 0 (corners in a square of side box_span_m, sizes 3–11 × 3–11 ×
 // 2–22 m) and points up to 6 m high in a square of side point_span_m with random upward-ish
@@ -65,9 +67,9 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
   const SkyModel sky = make_sky(35, 180, "cie-overcast");
   const Spectrum lz = sky.radiance(Vec3(0, 0, 1));
   const Scene scene(cube());
-  const std::vector<QueryPoint> pts = {at(5, 5, 10),                      // the cube's top face: open horizontal
-                                       at(-0.0, 5, 5, Vec3(-1, 0, 0)),   // its west wall: open wall
-                                       at(3000, 3000, 0)};                 // far away on the ground
+  const std::vector<QueryPoint> pts = {at(5, 5, 10),                    // the cube's top face: open horizontal
+                                       at(-0.0, 5, 5, Vec3(-1, 0, 0)),  // its west wall: open wall
+                                       at(3000, 3000, 0)};              // far away on the ground
   const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
   const double eh = 7 * kPi / 9, ev = kPi / 6 + 4.0 / 9;
   BOOST_TEST(r[0].sky_W_m2 == eh * lz.integral_nm(), tt::tolerance(1e-3));
@@ -78,9 +80,9 @@ BOOST_AUTO_TEST_CASE(open_faces_under_the_overcast_sky_match_closed_forms) {
   // sky_ratio: exactly 1 on the open horizontal face (same method, same quadrature); far away the
   // exact horizon sees the cube as a sliver (~1e-9 of the sky), and its fan, cut there, is
   // integrated by different Gauss–Legendre pieces: 1 within the quadrature's error (~1e-6, see
-  // geometry/exact/sky_fan.h). On the open wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC of an
-  // unobstructed window that BRE 209 (Littlefair, Site layout planning for daylight and
-  // sunlight, 2nd ed. 2011, §2.2) publishes.
+  // geometry/exact/sky_fan.h). On the open wall the vertical sky component, (π/6 + 4/9)/(7π/9) = 0.39624 — the 39.6 % maximum VSC
+  // of an unobstructed window that BRE 209 (Littlefair, Site layout planning for daylight and sunlight, 2nd ed. 2011, §2.2)
+  // publishes.
   BOOST_TEST(r[0].sky_ratio == 1.0, tt::tolerance(1e-12));
   BOOST_TEST(r[2].sky_ratio == 1.0, tt::tolerance(1e-6));
   BOOST_TEST(r[1].sky_ratio == ev / eh, tt::tolerance(1e-3));
@@ -126,8 +128,8 @@ BOOST_AUTO_TEST_CASE(uniform_sky_irradiance_is_pi_L_times_svf) {
 // The two methods on the same points (random boxes on the ground, points around them, the
 // physical sky with its aureole and a low sun): the sun's shadow test is the same exact test, so
 // identical; the SVF agrees within the band method's error (≤ 1e-3, the accuracy the default options
-// promise, svf_oracle_test; measured ≤ 5e-4); the sky irradiance within that plus the two quadratures' (~1e-5 each), relative to the
-// open sky's. Points inside a box go to the band method in both (exact zeros).
+// promise, svf_oracle_test; measured ≤ 5e-4); the sky irradiance within that plus the two quadratures' (~1e-5 each), relative to
+// the open sky's. Points inside a box go to the band method in both (exact zeros).
 BOOST_AUTO_TEST_CASE(exact_horizon_and_band_method_agree) {
   const RandomBlock block = random_block(9, 10, 50, 60, 60);
   const Scene scene(block.soup);
@@ -177,8 +179,8 @@ BOOST_AUTO_TEST_CASE(open_horizontal_face_under_the_physical_sky) {
 BOOST_AUTO_TEST_CASE(shadow_and_incidence_follow_the_geometry) {
   const SkyModel sky = make_sky(30, 180, "multiple");
   const Scene scene(cube());
-  const std::vector<QueryPoint> pts = {at(5, 10 + 17.0, 0), at(5, 10 + 17.7, 0), at(5, -3, 0),
-                                       at(5, -0.0, 5, Vec3(0, -1, 0)), at(5, 10, 5, Vec3(0, 1, 0))};
+  const std::vector<QueryPoint> pts = {at(5, 10 + 17.0, 0), at(5, 10 + 17.7, 0), at(5, -3, 0), at(5, -0.0, 5, Vec3(0, -1, 0)),
+                                       at(5, 10, 5, Vec3(0, 1, 0))};
   const auto r = compute_point_irradiance(scene, pts, sky, PointIrradianceOptions{});
   const double dn = sky.sun_direct_normal().integral_nm();
   BOOST_TEST(!r[0].sun_visible);
@@ -267,10 +269,9 @@ BOOST_AUTO_TEST_CASE(bad_quadrature_step_is_an_input_error) {
 BOOST_AUTO_TEST_CASE(irradiation_is_the_weighted_sum_of_moments) {
   const Scene scene(cube());
   const std::vector<QueryPoint> pts = {at(5, 22, 0), at(5, 5, 10), at(5, -0.0, 5, Vec3(0, -1, 0))};
-  const std::vector<SunMoment> moments = {
-      {direction_from_altitude_azimuth(30 * kDeg, 180 * kDeg), 0.5},
-      {direction_from_altitude_azimuth(40 * kDeg, 10 * kDeg), 1.5},
-      {direction_from_altitude_azimuth(-2 * kDeg, 300 * kDeg), 1.0}};
+  const std::vector<SunMoment> moments = {{direction_from_altitude_azimuth(30 * kDeg, 180 * kDeg), 0.5},
+                                          {direction_from_altitude_azimuth(40 * kDeg, 10 * kDeg), 1.5},
+                                          {direction_from_altitude_azimuth(-2 * kDeg, 300 * kDeg), 1.0}};
   const AtmosphereParams atm;
   const SkyModelSpec spec = parse_sky_model("multiple", "--model");
   const auto cum = compute_point_irradiation(scene, pts, atm, spec, moments, PointIrradianceOptions{});

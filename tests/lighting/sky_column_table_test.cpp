@@ -33,10 +33,10 @@ Scene block() {
 }
 
 std::vector<QueryPoint> block_points() {
-  return {{Vec3(0, -30, 0), Vec3(0, 0, 1)},           {Vec3(0, 0, 0), Vec3(0, 0, 1)},
-          {Vec3(-5.9, -30, 1.5), Vec3(1, 0, 0)},      {Vec3(5.9, 10, 4.5), Vec3(-1, 0, 0)},
-          {Vec3(16, -30, 12), Vec3(0, 0, 1)},         {Vec3(0, 20, 3), Vec3(0.3, -0.4, 0.866).normalized()},
-          {Vec3(-80, -80, 0), Vec3(0, 0, 1)},         {Vec3(24.9, 0, 20), Vec3(-1, 0, 0)}};
+  return {{Vec3(0, -30, 0), Vec3(0, 0, 1)},      {Vec3(0, 0, 0), Vec3(0, 0, 1)},
+          {Vec3(-5.9, -30, 1.5), Vec3(1, 0, 0)}, {Vec3(5.9, 10, 4.5), Vec3(-1, 0, 0)},
+          {Vec3(16, -30, 12), Vec3(0, 0, 1)},    {Vec3(0, 20, 3), Vec3(0.3, -0.4, 0.866).normalized()},
+          {Vec3(-80, -80, 0), Vec3(0, 0, 1)},    {Vec3(24.9, 0, 20), Vec3(-1, 0, 0)}};
 }
 
 ProjectedSkyGrid two_channels(const SkyRadianceGrid& g) {
@@ -93,12 +93,14 @@ BOOST_AUTO_TEST_CASE(physical_sky_matches_the_direct_fan_quadrature) {
       h.visible_fan(fan);
       double a[2], b[2];
       table.integrate_fan(fan, q.normal, a, 0.05);
-      integrate_fan_channels<2>(fan, q.normal, [&](const Vec3& d, double* c) { projected.lookup_unit_n<2>(d, c); }, b, 0.0125);
+      integrate_fan_channels<2>(
+          fan, q.normal, [&](const Vec3& d, double* c) { projected.lookup_unit_n<2>(d, c); }, b, 0.0125);
       // Relative to the open sky's horizontal irradiance: both read the same grid; what differs is
       // the tables' bilinear interpolation across the aureole (0.25° columns) and the quadratures
       // (measured ≤ 1e-5, worst with the sun at 8°).
       for (int k = 0; k < 2; ++k)
-        BOOST_TEST(std::abs(a[k] - b[k]) < 2e-5 * open[k], "altitude " << altitude << " channel " << k << ": " << a[k] << " vs " << b[k]);
+        BOOST_TEST(std::abs(a[k] - b[k]) < 2e-5 * open[k],
+                   "altitude " << altitude << " channel " << k << ": " << a[k] << " vs " << b[k]);
     }
   }
 }

@@ -5,8 +5,8 @@
 #include <thread>
 #include <vector>
 
-#include "geometry/core/input_error.h"
 #include "geometry/bands/sky_integral.h"
+#include "geometry/core/input_error.h"
 #include "lighting/integrals/sky_lut.h"
 #include "lighting/support/hand_cache.h"
 
@@ -17,15 +17,20 @@ using skyband::test::single_point_cache;
 namespace {
 constexpr double kLz = 2.5;  // zenith radiance of the test skies, W·m⁻²·sr⁻¹·nm⁻¹ (arbitrary)
 
-void uniform_sky(const Vec3&, Spectrum& out) { out = Spectrum::constant(1.0); }
+void uniform_sky(const Vec3&, Spectrum& out) {
+  out = Spectrum::constant(1.0);
+}
 // CIE standard overcast (Moon–Spencer, reference-notes §3.3): L = L_z (1 + 2 cos Z)/3.
-void overcast_sky(const Vec3& d, Spectrum& out) { out = Spectrum::constant(kLz * (1.0 + 2.0 * d.z()) / 3.0); }
+void overcast_sky(const Vec3& d, Spectrum& out) {
+  out = Spectrum::constant(kLz * (1.0 + 2.0 * d.z()) / 3.0);
+}
 // A coloured, anisotropic analytic sky (bluer toward the zenith, brighter toward +x +y): used
 // where only an independent quadrature is the oracle.
 void coloured_sky(const Vec3& d, Spectrum& out) {
   for (int i = 0; i < kSpectrumSamples; ++i) {
     const double blue = 1.0 - i / 40.0;
-    out[i] = (1.0 + 0.8 * blue * d.z()) * (1.2 + 0.5 * d.x() + 0.3 * d.y()) * std::exp(2.0 * std::max(0.0, d.dot(Vec3(0.6, 0.5, 0.62).normalized())));
+    out[i] = (1.0 + 0.8 * blue * d.z()) * (1.2 + 0.5 * d.x() + 0.3 * d.y()) *
+             std::exp(2.0 * std::max(0.0, d.dot(Vec3(0.6, 0.5, 0.62).normalized())));
   }
 }
 
@@ -128,11 +133,14 @@ BOOST_AUTO_TEST_CASE(occluded_coloured_sky_matches_direct_quadrature) {
     SkyLutCache cache(coloured_sky);
     const Spectrum e = diffuse_sky_irradiance(vc.view(0), cache);
     for (int ch : {0, 20, 40}) {
-      const double direct = integrate_irradiance(vc.view(0), [ch](const Vec3& d) {
-        Spectrum s;
-        coloured_sky(d, s);
-        return s[ch];
-      }, 0.01);
+      const double direct = integrate_irradiance(
+          vc.view(0),
+          [ch](const Vec3& d) {
+            Spectrum s;
+            coloured_sky(d, s);
+            return s[ch];
+          },
+          0.01);
       BOOST_TEST(e[ch] == direct, tt::tolerance(1e-4));
     }
   }
@@ -267,8 +275,8 @@ BOOST_AUTO_TEST_CASE(three_channel_path_is_bit_identical) {
   const Spectrum w[3] = {Spectrum::constant(1.0), Spectrum::constant(0.5), Spectrum::constant(0.25)};
   const SkyLut projected = lut.project(w);
   for (std::size_t l = 0; l < deltas.size(); ++l)
-    for (auto [a0, a1] : {std::pair{0.0, kPi}, std::pair{0.0, 0.7}, std::pair{0.5, kPi}, std::pair{1.0001, 1.0002},
-                          std::pair{0.3, 2.9}}) {
+    for (auto [a0, a1] :
+         {std::pair{0.0, kPi}, std::pair{0.0, 0.7}, std::pair{0.5, kPi}, std::pair{1.0001, 1.0002}, std::pair{0.3, 2.9}}) {
       double g[3] = {0.1, 0.2, 0.3}, u[3] = {0.1, 0.2, 0.3};
       projected.add_interval(l, a0, a1, 0.37, g);
       projected.add_interval_n<3>(l, a0, a1, 0.37, u);

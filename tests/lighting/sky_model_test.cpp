@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "geometry/core/input_error.h"
-#include "lighting/spectrum/colour.h"
 #include "lighting/sky/sky_model.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/sun/sun.h"
 
 namespace tt = boost::test_tools;
@@ -14,7 +14,9 @@ using namespace skyband;
 
 namespace {
 constexpr double kDeg = kPi / 180.0;
-Vec3 sun_at(double alt_deg, double az_deg) { return direction_from_altitude_azimuth(alt_deg * kDeg, az_deg * kDeg); }
+Vec3 sun_at(double alt_deg, double az_deg) {
+  return direction_from_altitude_azimuth(alt_deg * kDeg, az_deg * kDeg);
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(parse_model_names) {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lighting/spectrum/colour.h"
 #include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/support/analytic_sky.h"
 
 namespace tt = boost::test_tools;
@@ -47,8 +47,7 @@ BOOST_AUTO_TEST_CASE(interpolates_a_smooth_sky) {
 BOOST_AUTO_TEST_CASE(zero_below_horizon) {
   const SkyRadianceGrid grid(overcast, 1);
   Spectrum g;
-  for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0.3, 0.4, -0.2), Vec3(0, 0, -1), Vec3(0, 0, 0),
-                        Vec3(std::nan(""), 0, 1)}) {
+  for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0.3, 0.4, -0.2), Vec3(0, 0, -1), Vec3(0, 0, 0), Vec3(std::nan(""), 0, 1)}) {
     grid(d, g);
     for (int i = 0; i < kSpectrumSamples; ++i) BOOST_TEST(g[i] == 0.0);
   }
@@ -102,8 +101,7 @@ BOOST_AUTO_TEST_CASE(add_scaled_sums_lookups) {
     sum.lookup(d, rs);
     for (int k = 0; k < 2; ++k) BOOST_TEST(rs[k] == ra[k] + 0.25 * rb[k], tt::tolerance(1e-6));
   }
-  const ProjectedSkyGrid three =
-      SkyRadianceGrid([&](const Vec3& d, Spectrum& out) { test::clear_sky_radiance(sun1, d, out); }, 0)
-          .project(std::vector<Spectrum>{xyz_weights(0), xyz_weights(1), xyz_weights(2)});
+  const ProjectedSkyGrid three = SkyRadianceGrid([&](const Vec3& d, Spectrum& out) { test::clear_sky_radiance(sun1, d, out); }, 0)
+                                     .project(std::vector<Spectrum>{xyz_weights(0), xyz_weights(1), xyz_weights(2)});
   BOOST_CHECK_THROW(sum.add_scaled(three, 1.0), std::invalid_argument);
 }

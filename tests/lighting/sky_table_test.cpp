@@ -16,8 +16,12 @@ namespace tt = boost::test_tools;
 using namespace skyband;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
-int index_of_nm(double nm) { return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm)); }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
+int index_of_nm(double nm) {
+  return static_cast<int>(std::lround((nm - kLambdaMinNm) / kLambdaStepNm));
+}
 
 // Worst relative error of the table against direct integration over `n` random sky directions
 // (uniform on the upper hemisphere, fixed seed), at 400, 550 and 700 nm. The error is relative
@@ -122,8 +126,10 @@ BOOST_AUTO_TEST_CASE(rayleigh_zenith_sun_matches_plane_parallel_closed_form) {
     const int i = index_of_nm(nm);
     const double t = tau[i];
     double e = 0;
-    for (double mu : mus) e += 2.0 * kPi * mu * 0.8 / n * e0[i] * rayleigh_phase(mu) * (std::exp(-t) - std::exp(-t / mu)) / (1.0 - mu);
-    BOOST_TEST_MESSAGE(nm << " nm: model " << e_model[i] << ", plane-parallel " << e << " (" << 100.0 * (e_model[i] / e - 1.0) << "%)");
+    for (double mu : mus)
+      e += 2.0 * kPi * mu * 0.8 / n * e0[i] * rayleigh_phase(mu) * (std::exp(-t) - std::exp(-t / mu)) / (1.0 - mu);
+    BOOST_TEST_MESSAGE(nm << " nm: model " << e_model[i] << ", plane-parallel " << e << " (" << 100.0 * (e_model[i] / e - 1.0)
+                          << "%)");
     BOOST_TEST(e_model[i] == e, tt::tolerance(0.005));
   }
 }
@@ -140,7 +146,8 @@ BOOST_AUTO_TEST_CASE(horizontal_irradiance_quadrature) {
   Spectrum e;
   for (int k = 0; k < n; ++k) {
     const double mu = (k + 0.5) / n;
-    e += atm.sky_radiance(Vec3(std::sqrt(1.0 - mu * mu), 0.0, mu), Vec3(0, 0, 1), ScatteringOrders::Multiple) * (2.0 * kPi * mu / n);
+    e += atm.sky_radiance(Vec3(std::sqrt(1.0 - mu * mu), 0.0, mu), Vec3(0, 0, 1), ScatteringOrders::Multiple) *
+         (2.0 * kPi * mu / n);
   }
   for (double nm : {400.0, 550.0, 700.0}) {
     const int i = index_of_nm(nm);

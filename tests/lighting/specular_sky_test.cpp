@@ -16,7 +16,9 @@ using namespace skyband;
 using skyband::test::single_point_cache;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 
 // Analytic test skies (W·m⁻²·sr⁻¹·nm⁻¹, arbitrary scale).
 enum class SkyKind { kUniform, kOvercast, kClear };
@@ -62,7 +64,8 @@ BOOST_AUTO_TEST_CASE(white_furnace) {
       const double fast = specular_sky_radiance(v, view, lobe, sky)[20];
       const double ref = specular_sky_reference(v, view, lobe, sky)[20];
       BOOST_TEST(std::abs(ref - albedo) <= 2e-3, "m " << m << " θv " << tv << ": ref " << ref << " albedo " << albedo);
-      BOOST_TEST(std::abs(fast - albedo) <= 1e-2 * albedo, "m " << m << " θv " << tv << ": fast " << fast << " albedo " << albedo);
+      BOOST_TEST(std::abs(fast - albedo) <= 1e-2 * albedo,
+                 "m " << m << " θv " << tv << ": fast " << fast << " albedo " << albedo);
       BOOST_TEST(fast <= 1.0 + 1e-3);
     }
 }
@@ -80,7 +83,8 @@ BOOST_AUTO_TEST_CASE(white_furnace_at_grazing_views) {
       const SpecularLobe lobe{m, 1.0, nullptr, false};
       const double albedo = cook_torrance_albedo(m, deg(tv), 2000);
       const double fast = specular_sky_radiance(vc.view(0), view_at(Vec3(0, 0, 1), deg(tv), phi), lobe, sky)[20];
-      BOOST_TEST(std::abs(fast - albedo) <= 1e-2 * albedo, "m " << m << " θv " << tv << " φ " << phi << ": " << fast << " vs " << albedo);
+      BOOST_TEST(std::abs(fast - albedo) <= 1e-2 * albedo,
+                 "m " << m << " θv " << tv << " φ " << phi << ": " << fast << " vs " << albedo);
     }
 }
 
@@ -110,7 +114,8 @@ BOOST_AUTO_TEST_CASE(half_sky_occluded) {
 
 // Truncation error of the partial-sky integration at the default ε, against the full reference
 // over the same cache: ≤ 1% (method target) for m ∈ {0.02, 0.1, 0.3, 0.5}, several faces,
-// views, occlusion and skies (uniform; CIE clear with a circumsolar peak and a spectral tint). Also checks that truncation really happens for narrow lobes.
+// views, occlusion and skies (uniform; CIE clear with a circumsolar peak and a spectral tint). Also checks that truncation really
+// happens for narrow lobes.
 BOOST_AUTO_TEST_CASE(truncation_error_vs_full_integral) {
   const Vec3 normals[] = {Vec3(0, 0, 1), Vec3(0.8, 0.6, 0), Vec3(-0.3, 0.4, 0.8)};
   // (Overcast behaves like uniform here and is covered by paper_scale_is_four; kept out for run time.)
@@ -134,9 +139,8 @@ BOOST_AUTO_TEST_CASE(truncation_error_vs_full_integral) {
             const double floor = 1e-6 * kSpectrumSamples;
             const double err = std::abs(channel_sum(fast) - channel_sum(ref)) / std::max(channel_sum(ref), floor);
             worst = std::max(worst, err);
-            BOOST_TEST(err <= 1e-2, "m " << m << " n " << n.transpose() << " occl " << occluded << " sky "
-                                         << int(sky.kind) << " θv " << tv << ": " << channel_sum(fast) << " vs "
-                                         << channel_sum(ref));
+            BOOST_TEST(err <= 1e-2, "m " << m << " n " << n.transpose() << " occl " << occluded << " sky " << int(sky.kind)
+                                         << " θv " << tv << ": " << channel_sum(fast) << " vs " << channel_sum(ref));
             for (int c : {0, 40}) BOOST_TEST(std::abs(fast[c] - ref[c]) <= 1e-2 * std::max(ref[c], 1e-6));
             if (m <= 0.1 && channel_sum(ref) > floor) BOOST_TEST(fs.radiance_evals * 10 < rs.radiance_evals);
           }
@@ -158,8 +162,7 @@ BOOST_AUTO_TEST_CASE(perfect_mirror) {
   sky(q, lq);
   const VisibilityCache open = single_point_cache(n, 32);
   const Spectrum r = specular_sky_radiance(open.view(0), view, lobe, sky);
-  for (int c : {0, 25, 40})
-    BOOST_TEST(r[c] == fresnel_dielectric(std::cos(deg(50)), 1.52) * lq[c], tt::tolerance(1e-3));
+  for (int c : {0, 25, 40}) BOOST_TEST(r[c] == fresnel_dielectric(std::cos(deg(50)), 1.52) * lq[c], tt::tolerance(1e-3));
   // Hide the part of every sample line around Q's α: the mirror sees nothing.
   double alpha_q, delta_q;
   open.view(0).frame().angles_of(q, alpha_q, delta_q);
@@ -181,9 +184,8 @@ BOOST_AUTO_TEST_CASE(degenerate_inputs) {
   BOOST_TEST(channel_sum(specular_sky_radiance(vc.view(0), Vec3(0.3, 0, -1), lobe, sky)) == 0.0);
   BOOST_TEST(channel_sum(specular_sky_radiance(vc.view(0), Vec3(0, 0, 0), lobe, sky)) == 0.0);
   BOOST_TEST(channel_sum(specular_sky_radiance(vc.view(0), Vec3(0, 0, 1), SpecularLobe{0.2, 0.0, nullptr, false}, sky)) == 0.0);
-  const VisibilityCache closed = single_point_cache(Vec3(0, 0, 1), 16, [](int, double) {
-    return std::vector<std::pair<double, double>>{};
-  });
+  const VisibilityCache closed =
+      single_point_cache(Vec3(0, 0, 1), 16, [](int, double) { return std::vector<std::pair<double, double>>{}; });
   BOOST_TEST(channel_sum(specular_sky_radiance(closed.view(0), Vec3(0, 0.2, 1), lobe, sky)) == 0.0);
   // Grazing view (89.9°) stays finite.
   const Spectrum g = specular_sky_radiance(vc.view(0), view_at(Vec3(0, 0, 1), deg(89.9), 0.0), lobe, sky);
@@ -208,14 +210,14 @@ BOOST_AUTO_TEST_CASE(paper_scale_is_four) {
 BOOST_AUTO_TEST_CASE(stop_rule_orders_underflowed_samples_by_exponent) {
   using specular_detail::Level;
   using specular_detail::rising;
-  BOOST_TEST(rising(Level{2.0, 1.0}, Level{1.0, 0.5}));        // G decides when positive
+  BOOST_TEST(rising(Level{2.0, 1.0}, Level{1.0, 0.5}));  // G decides when positive
   BOOST_TEST(!rising(Level{1.0, 0.5}, Level{2.0, 1.0}));
   BOOST_TEST(rising(Level{1e-300, 700.0}, Level{0.0, 710.0}));  // leaving the plateau
   BOOST_TEST(!rising(Level{0.0, 900.0}, Level{1e-300, 700.0}));
-  BOOST_TEST(rising(Level{0.0, 800.0}, Level{0.0, 900.0}));     // both underflowed: exponent falls
+  BOOST_TEST(rising(Level{0.0, 800.0}, Level{0.0, 900.0}));  // both underflowed: exponent falls
   BOOST_TEST(!rising(Level{0.0, 900.0}, Level{0.0, 800.0}));
-  BOOST_TEST(!rising(Level{0.0, 900.0}, Level{0.0, 900.0}));    // a true plateau is not rising
-  BOOST_TEST(!rising(Level{}, Level{}));                         // no lobe at all (k = 0)
+  BOOST_TEST(!rising(Level{0.0, 900.0}, Level{0.0, 900.0}));  // a true plateau is not rising
+  BOOST_TEST(!rising(Level{}, Level{}));                      // no lobe at all (k = 0)
 }
 
 // The march's lobe factor from N·L and V·L alone (specular_detail::lobe_factor: one square root,
@@ -284,9 +286,8 @@ BOOST_AUTO_TEST_CASE(lobe_window_sky_classifies_the_cap_around_the_mirror_direct
             continue;
           }
           ++open_cases;
-          const VisibilityCache blocked = single_point_cache(n, 64, [](int, double) {
-            return std::vector<std::pair<double, double>>{};
-          });
+          const VisibilityCache blocked =
+              single_point_cache(n, 64, [](int, double) { return std::vector<std::pair<double, double>>{}; });
           BOOST_TEST((lobe_window_sky(blocked.view(0), v, lobe) == LobeWindowSky::kClosed));
           const VisibilityCache edge = single_point_cache(n, 64, [&](int, double) {
             return std::vector<std::pair<double, double>>{{aq, kPi}};

@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE weather_timing
 #include <boost/test/unit_test.hpp>
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <functional>
 #include <string>
-#include <unistd.h>
 
 #include "geometry/core/vec3.h"
 #include "io/epw_reader.h"
@@ -33,7 +33,9 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 // cos(zenith) of the sun from a model independent of the SPA: Spencer's (1971) Fourier series
 // for the declination and the equation of time, as given by Iqbal, "An Introduction to Solar
@@ -44,8 +46,8 @@ double spencer_cos_zenith(double latitude_deg, double longitude_deg, double time
   const double g = 2 * kPi * (n - 1 + (t_h - 12) / 24) / 365;  // day angle, at the instant
   const double declination = 0.006918 - 0.399912 * std::cos(g) + 0.070257 * std::sin(g) - 0.006758 * std::cos(2 * g) +
                              0.000907 * std::sin(2 * g) - 0.002697 * std::cos(3 * g) + 0.00148 * std::sin(3 * g);
-  const double eot_min = 229.18 * (0.000075 + 0.001868 * std::cos(g) - 0.032077 * std::sin(g) -
-                                   0.014615 * std::cos(2 * g) - 0.040849 * std::sin(2 * g));
+  const double eot_min = 229.18 * (0.000075 + 0.001868 * std::cos(g) - 0.032077 * std::sin(g) - 0.014615 * std::cos(2 * g) -
+                                   0.040849 * std::sin(2 * g));
   const double solar_h = t_h + (longitude_deg - 15 * time_zone_h) / 15 + eot_min / 60;
   const double omega = (solar_h - 12) * 15 * kPi / 180;
   const double phi = latitude_deg * kPi / 180;
@@ -110,7 +112,8 @@ BOOST_AUTO_TEST_CASE(radiation_built_from_the_sun_is_centred_and_shifts_are_meas
       // 2-minute bound covers Spencer's equation-of-time error (≤ 35 s), refraction (absent here,
       // present in the SPA; symmetric about noon) and the partial hours at sunrise and sunset,
       // where an hour's mean and its mid-hour sample differ.
-      const fs::path ok = write_synthetic_epw(d, "ok.epw", site, [&](int n, int h) { return hourly_clear_sky_Wh_m2(site, n, h - 1); });
+      const fs::path ok =
+          write_synthetic_epw(d, "ok.epw", site, [&](int n, int h) { return hourly_clear_sky_Wh_m2(site, n, h - 1); });
       const WeatherSeries s = read_epw(ok);
       const WeatherTiming t = weather_timing(s);
       BOOST_TEST_MESSAGE(site.name << ": correct labels: offset " << t.offset_min << " min over " << t.days_used << " days");
@@ -121,8 +124,8 @@ BOOST_AUTO_TEST_CASE(radiation_built_from_the_sun_is_centred_and_shifts_are_meas
 
       // Labels one hour late (label h holds (h−2, h−1]): the radiation comes 60 min later than
       // the sun says. One hour early (label h holds (h, h+1]): 60 min earlier. Same 2-min bound.
-      const WeatherSeries late =
-          read_epw(write_synthetic_epw(d, "late.epw", site, [&](int n, int h) { return hourly_clear_sky_Wh_m2(site, n, h - 2); }));
+      const WeatherSeries late = read_epw(
+          write_synthetic_epw(d, "late.epw", site, [&](int n, int h) { return hourly_clear_sky_Wh_m2(site, n, h - 2); }));
       const WeatherTiming tl = weather_timing(late);
       BOOST_TEST_MESSAGE(site.name << ": labels 1 h late: offset " << tl.offset_min << " min");
       BOOST_TEST(tl.offset_min == 60.0, tt::tolerance(2.0 / 60.0));
@@ -154,7 +157,8 @@ BOOST_AUTO_TEST_CASE(polar_night_and_partial_days_are_skipped) {
   // 80° N in a common year: no sun from late October to mid February; the radiation is built
   // from the sun, so those days have none and are skipped, the rest are centred.
   const Site arctic{"Arctic", 80.0, 15.0, 1.0};
-  const fs::path p = write_synthetic_epw(d, "arctic.epw", arctic, [&](int n, int h) { return hourly_clear_sky_Wh_m2(arctic, n, h - 1); });
+  const fs::path p =
+      write_synthetic_epw(d, "arctic.epw", arctic, [&](int n, int h) { return hourly_clear_sky_Wh_m2(arctic, n, h - 1); });
   const WeatherSeries s = read_epw(p);
   const WeatherTiming t = weather_timing(s);
   BOOST_TEST(t.days_total == 365);
@@ -198,10 +202,9 @@ BOOST_AUTO_TEST_CASE(shared_files_are_classified_as_the_readme_says, *skyband::t
       const auto start = std::chrono::steady_clock::now();
       const WeatherTiming t = weather_timing(s);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      BOOST_TEST_MESSAGE(f.file.filename().string() << ": offset " << t.offset_min << " min (radiation "
-                                                    << t.radiation_mean_hour << " h, sun " << t.sun_mean_hour
-                                                    << " h, " << t.days_used << " of " << t.days_total << " days), "
-                                                    << ms << " ms");
+      BOOST_TEST_MESSAGE(f.file.filename().string()
+                         << ": offset " << t.offset_min << " min (radiation " << t.radiation_mean_hour << " h, sun "
+                         << t.sun_mean_hour << " h, " << t.days_used << " of " << t.days_total << " days), " << ms << " ms");
       // The README's offset is the difference of its mean hours: −1.8, −57.6 and −31.8 min.
       // Measured here: Chicago −1.8 min (365 days), Heino −58.5 (325 days), Cloncurry −31.0 (365
       // days). ±5 min: the README's definition (annual means) differs slightly from the per-day

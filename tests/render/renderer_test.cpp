@@ -6,11 +6,11 @@
 #include <set>
 #include <vector>
 
-#include "geometry/mesh/camera.h"
 #include "geometry/core/input_error.h"
+#include "geometry/mesh/camera.h"
 #include "lighting/spectrum/colour.h"
-#include "render/renderer.h"
 #include "lighting/sun/sun.h"
+#include "render/renderer.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;
@@ -198,11 +198,13 @@ BOOST_AUTO_TEST_CASE(box_shadow_edge_is_where_geometry_puts_it) {
     ++checked;
     if (in) ++shadowed;
     const float v = L.sun_diffuse[p * 3 + 1];
-    if (in) BOOST_TEST(v == 0.0f);
-    else BOOST_TEST(v == lit[1], tt::tolerance(1e-6));  // float storage only
+    if (in)
+      BOOST_TEST(v == 0.0f);
+    else
+      BOOST_TEST(v == lit[1], tt::tolerance(1e-6));  // float storage only
   }
   BOOST_TEST(checked > 1000u);
-  BOOST_TEST(shadowed > 40u);  // the 2 m × 2 m shadow is ~83 pixels of 0.22 m, less the edge band
+  BOOST_TEST(shadowed > 40u);    // the 2 m × 2 m shadow is ~83 pixels of 0.22 m, less the edge band
   BOOST_TEST(near_edge < 200u);  // outline ~6 m long, a 2-pixel band of 0.22 m pixels: ~55
   // The edge itself: along the image column through x ≈ 0, the last shadowed pixel and the first
   // lit pixel beyond y = 3 straddle y = 3 within one pixel footprint.
@@ -210,8 +212,10 @@ BOOST_AUTO_TEST_CASE(box_shadow_edge_is_where_geometry_puts_it) {
   for (std::size_t p = 0; p < pass.sample_surface.size(); ++p) {
     const Vec3 q = pass.surfaces[pass.sample_surface[p]].position;
     if (std::abs(q.x()) > footprint || std::abs(q.z()) > 1e-9 || q.y() < 1) continue;
-    if (L.sun_diffuse[p * 3 + 1] == 0.0f) last_in = std::max(last_in, q.y());
-    else first_out = std::min(first_out, q.y());
+    if (L.sun_diffuse[p * 3 + 1] == 0.0f)
+      last_in = std::max(last_in, q.y());
+    else
+      first_out = std::min(first_out, q.y());
   }
   BOOST_TEST(last_in <= 3.0);
   BOOST_TEST(first_out >= 3.0);
@@ -284,7 +288,9 @@ BOOST_AUTO_TEST_CASE(physical_sky_images_are_finite_and_relighting_is_bit_identi
   BOOST_TEST(!bit_equal(a.total, b_relit.total));
   // On surfaces total = the sum of the four layers (renderer.h), to float rounding.
   for (std::size_t i = 0; i < a.total.size(); ++i) {
-    if (pass.sample_surface[(i / 3) * 2] == GeometryPass::kBackground || pass.sample_surface[(i / 3) * 2 + 1] == GeometryPass::kBackground) continue;
+    if (pass.sample_surface[(i / 3) * 2] == GeometryPass::kBackground ||
+        pass.sample_surface[(i / 3) * 2 + 1] == GeometryPass::kBackground)
+      continue;
     const double sum = double(a.sun_diffuse[i]) + a.sun_specular[i] + a.sky_diffuse[i] + a.sky_specular[i];
     BOOST_TEST(a.total[i] == sum, tt::tolerance(1e-5));  // four float roundings
   }

@@ -5,13 +5,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "lighting/spectrum/colour.h"
 #include "lighting/brdf/material.h"
-#include "lighting/sky/sky_radiance_grid.h"
 #include "lighting/integrals/specular_sky.h"
-#include "render/specular_sky_colour.h"
+#include "lighting/sky/sky_radiance_grid.h"
+#include "lighting/spectrum/colour.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
+#include "render/specular_sky_colour.h"
 
 namespace tt = boost::test_tools;
 using namespace skyband;
@@ -19,7 +19,9 @@ using skyband::test::single_point_cache;
 using skyband::test::view_at;
 
 namespace {
-double deg(double d) { return d * kPi / 180.0; }
+double deg(double d) {
+  return d * kPi / 180.0;
+}
 std::vector<std::pair<double, double>> some_occlusion(int band, double delta) {
   if (band % 7 == 3) return {};
   return {{0.0, 1.1}, {1.3 + 0.2 * std::sin(3.0 * delta), 2.5}, {2.7, kPi}};
@@ -52,9 +54,9 @@ BOOST_AUTO_TEST_CASE(colour_march_matches_spectral_march) {
             const Xyz s = spectrum_to_xyz(specular_sky_radiance(v, view, m.specular_lobe(), grid, opt));
             const double tol = eps < 1e-6 ? 1e-3 : 2e-2;
             const double floor = 1e-6;  // lobes wholly below the horizon reflect ~0
-            BOOST_TEST(std::abs(c.Y - s.Y) <= tol * std::max(s.Y, floor),
-                       name << " n " << n.transpose() << " occl " << occluded << " θv " << tv << " ε " << eps << ": "
-                            << c.Y << " vs " << s.Y);
+            BOOST_TEST(std::abs(c.Y - s.Y) <= tol * std::max(s.Y, floor), name << " n " << n.transpose() << " occl " << occluded
+                                                                               << " θv " << tv << " ε " << eps << ": " << c.Y
+                                                                               << " vs " << s.Y);
             BOOST_TEST(std::abs(c.Z - s.Z) <= tol * std::max(s.Z, floor));
           }
         }

@@ -30,11 +30,11 @@ struct CubeFace {
 };
 
 const CubeFace kCubeFaces[5] = {
-    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},     // top
-    {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},     // +x
-    {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}},    // −x  (u × v = (0,0,1)×(0,1,0) = (−1,0,0))
-    {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},     // +y  ((0,0,1)×(1,0,0) = (0,1,0))
-    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},    // −y  ((1,0,0)×(0,0,1) = (0,−1,0))
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},   // top
+    {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   // +x
+    {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}},  // −x  (u × v = (0,0,1)×(0,1,0) = (−1,0,0))
+    {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   // +y  ((0,0,1)×(1,0,0) = (0,1,0))
+    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},  // −y  ((1,0,0)×(0,0,1) = (0,−1,0))
 };
 
 // Does the plane of `polygon` (first three vertices, or any non-degenerate triple) contain P?
@@ -57,8 +57,7 @@ bool plane_contains_point(std::span<const Vec3> polygon, const Vec3& p) {
 // polygon is convex if the occluder is (triangles, box faces), and so is its central projection;
 // taking the convex hull with exact predicates turns float round-off near-degeneracies into a
 // simple polygon. Non-convex occluder polygons must be triangulated by the caller.
-bool project_onto_face(std::span<const Vec3> polygon, const Vec3& p, const Vec3& n, const CubeFace& f,
-                       ExactPolygon& out) {
+bool project_onto_face(std::span<const Vec3> polygon, const Vec3& p, const Vec3& n, const CubeFace& f, ExactPolygon& out) {
   Polygon3 clipped = clip_to_sky_front(polygon, p, n);
   const Vec3 planes[4] = {f.w - f.u, f.w + f.u, f.w - f.v, f.w + f.v};
   for (const Vec3& m : planes) {
@@ -84,8 +83,7 @@ bool project_onto_face(std::span<const Vec3> polygon, const Vec3& p, const Vec3&
 }
 
 // Signed Lambert sum of a union boundary on cube face f, lifted back to 3D (q = u·a + v·b + w).
-double lifted_contour(const ExactPolygon& poly, const Vec3& p, const Vec3& n, const CubeFace& f,
-                      std::vector<Vec3>& scratch) {
+double lifted_contour(const ExactPolygon& poly, const Vec3& p, const Vec3& n, const CubeFace& f, std::vector<Vec3>& scratch) {
   scratch.clear();
   for (auto it = poly.vertices_begin(); it != poly.vertices_end(); ++it) {
     const double a = CGAL::to_double(it->x()), b = CGAL::to_double(it->y());
@@ -115,7 +113,7 @@ double lambert_contour_signed(const Vec3& p, const Vec3& n, std::span<const Vec3
     const Vec3 b = polygon[(i + 1) % m] - p;
     const Vec3 c = a.cross(b);
     const double c_norm = c.norm();
-    if (!(c_norm > 0)) continue;  // edge collinear with P: zero contribution
+    if (!(c_norm > 0)) continue;                        // edge collinear with P: zero contribution
     const double gamma = std::atan2(c_norm, a.dot(b));  // angle between r_i and r_{i+1}, radians
     sum += gamma * n.dot(c) / c_norm;
   }
@@ -154,7 +152,9 @@ Polygon3 clip_to_sky_front(std::span<const Vec3> polygon, const Vec3& p, const V
   return clip_to_half_space(sky, p, n);
 }
 
-double open_sky_view_factor(const Vec3& n) { return 0.5 * (1.0 + n.normalized().z()); }
+double open_sky_view_factor(const Vec3& n) {
+  return 0.5 * (1.0 + n.normalized().z());
+}
 
 Vec3 OrientedBox::corner(int k) const {
   const double lx = ((k & 1) ? 0.5 : -0.5) * size.x();
@@ -254,29 +254,29 @@ double svf_union_oracle(const Vec3& p, const Vec3& n, std::span<const Polygon3> 
 UnionSkyFactors sky_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup) {
   std::vector<Polygon3> polys;
   polys.reserve(soup.triangles.size());
-  for (const auto& t : soup.triangles)
-    polys.push_back({soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]});
+  for (const auto& t : soup.triangles) polys.push_back({soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]});
   return sky_union_oracle(p, n, polys);
 }
 
 double svf_union_oracle(const Vec3& p, const Vec3& n, const TriangleSoup& soup) {
   std::vector<Polygon3> polys;
   polys.reserve(soup.triangles.size());
-  for (const auto& t : soup.triangles)
-    polys.push_back({soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]});
+  for (const auto& t : soup.triangles) polys.push_back({soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]});
   return svf_union_oracle(p, n, polys);
 }
 
-SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const TriangleSoup& soup,
-                                  double initial_radius_m, double target_half_width, bool front_faces_only,
-                                  double max_radius_m) {
+SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const TriangleSoup& soup, double initial_radius_m,
+                                  double target_half_width, bool front_faces_only, double max_radius_m) {
   const Vec3 n = n_in.normalized();
   double z_top = -std::numeric_limits<double>::infinity();
   for (const Vec3& v : soup.vertices) z_top = std::max(z_top, v.z());
   // Horizontal distance from P to each triangle's xy bounding box (a lower bound on the
   // horizontal distance of every point of the triangle); triangles that cannot matter at all
   // (below the horizon or behind the element) are skipped once here.
-  struct Candidate { double distance_m; Polygon3 tri; };
+  struct Candidate {
+    double distance_m;
+    Polygon3 tri;
+  };
   std::vector<Candidate> cands;
   for (const auto& t : soup.triangles) {
     Polygon3 tri = {soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
@@ -284,8 +284,10 @@ SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n_in, const Triangl
     if (front_faces_only && !((tri[1] - tri[0]).cross(tri[2] - tri[0]).dot(p - tri[0]) > 0)) continue;
     double lo_x = tri[0].x(), hi_x = lo_x, lo_y = tri[0].y(), hi_y = lo_y;
     for (const Vec3& v : tri) {
-      lo_x = std::min(lo_x, v.x()); hi_x = std::max(hi_x, v.x());
-      lo_y = std::min(lo_y, v.y()); hi_y = std::max(hi_y, v.y());
+      lo_x = std::min(lo_x, v.x());
+      hi_x = std::max(hi_x, v.x());
+      lo_y = std::min(lo_y, v.y());
+      hi_y = std::max(hi_y, v.y());
     }
     const double dx = std::max({lo_x - p.x(), p.x() - hi_x, 0.0});
     const double dy = std::max({lo_y - p.y(), p.y() - hi_y, 0.0});
@@ -328,7 +330,9 @@ double canyon_wall_svf(double z, double w, double h) {
   return 0.5 * (1.0 - (h - z) / std::hypot(w, h - z));
 }
 
-double wall_ground_svf(double d, double h) { return 0.5 * (1.0 + d / std::hypot(d, h)); }
+double wall_ground_svf(double d, double h) {
+  return 0.5 * (1.0 + d / std::hypot(d, h));
+}
 
 double parallel_rectangle_form_factor(double a, double b, double c) {
   const double A = a / c, B = b / c;

@@ -23,8 +23,8 @@
 #include <span>
 #include <vector>
 
-#include "geometry/mesh/triangle_soup.h"
 #include "geometry/core/vec3.h"
+#include "geometry/mesh/triangle_soup.h"
 
 namespace skyband::oracle {
 
@@ -55,9 +55,9 @@ double open_sky_view_factor(const Vec3& n);
 
 // A box standing on z = base_z, rotated by yaw about the vertical through its centre.
 struct OrientedBox {
-  Vec3 centre{0, 0, 0};       // metres; centre of the box (z = middle height)
-  Vec3 size{1, 1, 1};         // metres; full extents along its local x, y and z
-  double yaw_rad = 0;         // rotation about +z, counter-clockwise seen from above
+  Vec3 centre{0, 0, 0};  // metres; centre of the box (z = middle height)
+  Vec3 size{1, 1, 1};    // metres; full extents along its local x, y and z
+  double yaw_rad = 0;    // rotation about +z, counter-clockwise seen from above
   // Corner k (bit 0: +x, bit 1: +y, bit 2: +z side) in the world frame.
   Vec3 corner(int k) const;
   // The 6 faces as quads, each ordered counter-clockwise seen from outside (outward normal).
@@ -103,9 +103,8 @@ struct SvfBounds {
 // above it): every sight line entering a solid then crosses a front face first, so the union of
 // the front faces' projections is the union of all faces' projections. The generators of
 // scene_generators.h produce such scenes.
-SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n, const TriangleSoup& soup,
-                                  double initial_radius_m, double target_half_width,
-                                  bool front_faces_only = false, double max_radius_m = 1e300);
+SvfBounds svf_union_oracle_culled(const Vec3& p, const Vec3& n, const TriangleSoup& soup, double initial_radius_m,
+                                  double target_half_width, bool front_faces_only = false, double max_radius_m = 1e300);
 
 // ---- Closed forms (reference-notes §5; all dimensionless view factors) ----------------------
 

@@ -62,7 +62,8 @@ std::vector<QueryPoint> real_mesh_facade_points(const Scene& scene, std::size_t 
   if (walls.empty()) return out;
   while (out.size() < count) {
     const double r = rng.uniform(0, total);
-    const std::size_t k = std::min(walls.size() - 1, std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin()));
+    const std::size_t k =
+        std::min(walls.size() - 1, std::size_t(std::lower_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin()));
     const auto& tri = soup.triangles[walls[k]];
     double u = rng.uniform(), v = rng.uniform();
     if (u + v > 1) u = 1 - u, v = 1 - v;

@@ -83,8 +83,7 @@ City make_city(const CityParams& pr) {
   const int n = pr.ground_cells;
   const auto base = static_cast<std::uint32_t>(city.soup.vertices.size());
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      city.soup.vertices.emplace_back(lo + (hi - lo) * i / n, lo + (hi - lo) * j / n, 0.0);
+    for (int i = 0; i <= n; ++i) city.soup.vertices.emplace_back(lo + (hi - lo) * i / n, lo + (hi - lo) * j / n, 0.0);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const std::uint32_t v00 = base + j * (n + 1) + i, v10 = v00 + 1, v01 = v00 + (n + 1), v11 = v01 + 1;
@@ -124,8 +123,8 @@ std::vector<QueryPoint> street_points(const City& city, std::size_t count, std::
   return out;
 }
 
-std::vector<QueryPoint> facade_points(const std::vector<OrientedBox>& buildings, std::size_t count,
-                                      double offset_m, std::uint64_t seed) {
+std::vector<QueryPoint> facade_points(const std::vector<OrientedBox>& buildings, std::size_t count, double offset_m,
+                                      std::uint64_t seed) {
   Rng rng(seed);
   std::vector<QueryPoint> out;
   out.reserve(count);
@@ -223,8 +222,7 @@ OpenBoxCity make_open_box_city(const OpenBoxCityParams& pr) {
   return city;
 }
 
-std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed,
-                                                double beyond_m) {
+std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::size_t count, std::uint64_t seed, double beyond_m) {
   Rng rng(seed);
   std::vector<QueryPoint> out;
   const double size = city.size_m();
@@ -234,10 +232,18 @@ std::vector<QueryPoint> open_city_street_points(const OpenBoxCity& city, std::si
       // A ring beyond the edge: a random side, then a random position along it.
       const double along = rng.uniform(-beyond_m, size + beyond_m), off = rng.uniform(1.0, beyond_m);
       switch (rng.below(4)) {
-        case 0: p = Vec3(along, -off, 0.05); break;
-        case 1: p = Vec3(along, size + off, 0.05); break;
-        case 2: p = Vec3(-off, along, 0.05); break;
-        default: p = Vec3(size + off, along, 0.05); break;
+        case 0:
+          p = Vec3(along, -off, 0.05);
+          break;
+        case 1:
+          p = Vec3(along, size + off, 0.05);
+          break;
+        case 2:
+          p = Vec3(-off, along, 0.05);
+          break;
+        default:
+          p = Vec3(size + off, along, 0.05);
+          break;
       }
     } else {
       p = Vec3{rng.uniform(0, size), rng.uniform(0, size), 0.05};
@@ -261,10 +267,14 @@ std::vector<QueryPoint> open_city_facade_points(const OpenBoxCity& city, std::si
     double s = rng.uniform(0, perimeter);
     const double z = rng.uniform(0, size.z());
     Vec3 p, n;
-    if (s < size.x()) p = Vec3(b[0].x() + s, b[0].y(), z), n = Vec3(0, -1, 0);
-    else if ((s -= size.x()) < size.y()) p = Vec3(b[1].x(), b[0].y() + s, z), n = Vec3(1, 0, 0);
-    else if ((s -= size.y()) < size.x()) p = Vec3(b[1].x() - s, b[1].y(), z), n = Vec3(0, 1, 0);
-    else s -= size.x(), p = Vec3(b[0].x(), b[1].y() - s, z), n = Vec3(-1, 0, 0);
+    if (s < size.x())
+      p = Vec3(b[0].x() + s, b[0].y(), z), n = Vec3(0, -1, 0);
+    else if ((s -= size.x()) < size.y())
+      p = Vec3(b[1].x(), b[0].y() + s, z), n = Vec3(1, 0, 0);
+    else if ((s -= size.y()) < size.x())
+      p = Vec3(b[1].x() - s, b[1].y(), z), n = Vec3(0, 1, 0);
+    else
+      s -= size.x(), p = Vec3(b[0].x(), b[1].y() - s, z), n = Vec3(-1, 0, 0);
     out.push_back({p + 0.05 * n, n});
   }
   return out;

@@ -11,8 +11,8 @@
 
 #include "geometry/bands/band_visibility.h"
 #include "geometry/mesh/height_field.h"
-#include "geometry/support/lambert_oracle.h"
 #include "geometry/mesh/triangle_soup.h"
+#include "geometry/support/lambert_oracle.h"
 
 namespace skyband::gen {
 
@@ -24,7 +24,7 @@ class Rng {
  public:
   explicit Rng(std::uint64_t seed) : engine_(seed) {}
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }  // [0, 1)
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }   // [lo, hi)
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }    // [lo, hi)
   std::uint64_t below(std::uint64_t n) { return static_cast<std::uint64_t>(uniform() * static_cast<double>(n)) % n; }
   // A unit vector of tilt (from +z) then azimuth (from +x) drawn in that order.
   Vec3 unit_normal(double tilt_lo, double tilt_hi, double az_lo, double az_hi) {
@@ -62,19 +62,19 @@ std::vector<OrientedBox> street_canyon(double width_m, double height_m, double l
 // lots × lots box buildings with random (seeded) heights and set-backs, on a ground plane made of
 // a grid of triangles covering the city plus a margin of one block.
 struct CityParams {
-  int blocks = 8;                // per side
-  int lots = 2;                  // buildings per block, per side
-  double block_m = 60;           // block side (buildings inside), metres
-  double street_m = 18;          // street width, metres
+  int blocks = 8;        // per side
+  int lots = 2;          // buildings per block, per side
+  double block_m = 60;   // block side (buildings inside), metres
+  double street_m = 18;  // street width, metres
   double height_lo_m = 8, height_hi_m = 60;
-  double setback_max_m = 3;      // each building footprint is inset by up to this much per side
-  int ground_cells = 8;          // ground grid cells per side (2 triangles each)
+  double setback_max_m = 3;  // each building footprint is inset by up to this much per side
+  int ground_cells = 8;      // ground grid cells per side (2 triangles each)
   std::uint64_t seed = 1;
 };
 struct City {
   CityParams params;
   std::vector<OrientedBox> buildings;
-  TriangleSoup soup;             // buildings (12 triangles each) then the ground grid
+  TriangleSoup soup;  // buildings (12 triangles each) then the ground grid
   double pitch_m() const { return params.block_m + params.street_m; }
   double size_m() const { return params.blocks * pitch_m(); }  // city spans [0, size] (streets at edges)
 };
@@ -86,8 +86,8 @@ CityParams city_params_for_triangles(std::size_t triangles, std::uint64_t seed);
 std::vector<QueryPoint> street_points(const City& city, std::size_t count, std::uint64_t seed);
 // Query points on building facades: normal outward, `offset_m` off the wall (0 = exactly on it),
 // heights in [5 %, 95 %] of the building, along the wall within [5 %, 95 %] of its length.
-std::vector<QueryPoint> facade_points(const std::vector<OrientedBox>& buildings, std::size_t count,
-                                      double offset_m, std::uint64_t seed);
+std::vector<QueryPoint> facade_points(const std::vector<OrientedBox>& buildings, std::size_t count, double offset_m,
+                                      std::uint64_t seed);
 
 // Translation to projected coordinates (UTM-like magnitudes): x + 4·10⁵ m, y + 6·10⁶ m.
 inline const Vec3 kProjectedOffset{4.0e5, 6.0e6, 0.0};
@@ -116,8 +116,8 @@ struct OpenBoxCityParams {
 };
 struct OpenBoxCity {
   OpenBoxCityParams params;
-  std::vector<std::array<Vec3, 2>> boxes;  // lo, hi corners
-  TriangleSoup soup;                       // boxes, then the ground quad at z = 0
+  std::vector<std::array<Vec3, 2>> boxes;                             // lo, hi corners
+  TriangleSoup soup;                                                  // boxes, then the ground quad at z = 0
   double size_m() const { return params.per_side * params.pitch_m; }  // the city spans [0, size]²
 };
 OpenBoxCity make_open_box_city(const OpenBoxCityParams& params);

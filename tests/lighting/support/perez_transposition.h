@@ -30,7 +30,6 @@ double perez1990_aoi_projection(double surface_tilt_deg, double surface_azimuth_
 // All zero (pvlib's night convention) when the air mass is NaN or DHI is 0; the components are
 // zeroed where the clamped total is 0, as in pvlib.
 Perez1990Diffuse perez1990_sky_diffuse(double surface_tilt_deg, double surface_azimuth_deg, double dhi_W_m2, double dni_W_m2,
-                                       double dni_extra_W_m2, double solar_zenith_deg, double solar_azimuth_deg,
-                                       double air_mass);
+                                       double dni_extra_W_m2, double solar_zenith_deg, double solar_azimuth_deg, double air_mass);
 
 }  // namespace skyband::test
