@@ -31,6 +31,7 @@
 #include "geometry/core/input_error.h"
 #include "lighting/brdf/material.h"
 #include "lighting/integrals/specular_sky.h"
+#include "lighting/integrals/specular_sky_reference.h"
 #include "lighting/sky/sky_radiance_grid.h"
 #include "lighting/spectrum/colour.h"
 #include "lighting/support/analytic_sky.h"

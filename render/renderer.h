@@ -40,7 +40,7 @@
 #include "geometry/mesh/scene.h"
 #include "geometry/visibility/sky_factors.h"
 #include "lighting/brdf/material.h"
-#include "lighting/integrals/specular_sky.h"
+#include "lighting/integrals/specular_sky_options.h"
 #include "lighting/sky/sky_model.h"
 
 namespace skyband {

@@ -12,6 +12,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "geometry/core/gauss_legendre.h"
 #include "geometry/core/input_error.h"
 #include "lighting/atmosphere/phase_functions.h"
 #include "lighting/spectrum/solar_spectrum.h"
@@ -40,10 +41,6 @@ constexpr double kOzoneCrossSection_m2[kSpectrumSamples] = {
     5.019e-25, 4.305e-25, 3.740e-25, 3.215e-25, 2.662e-25, 2.238e-25, 1.852e-25, 1.473e-25, 1.209e-25, 9.423e-26, 7.455e-26,
     6.566e-26, 5.105e-26, 4.150e-26, 4.228e-26, 3.237e-26, 2.451e-26, 2.801e-26, 2.534e-26};
 
-// 8-point Gauss–Legendre rule on [−1, 1] (Abramowitz & Stegun table 25.4).
-constexpr double kGl8x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-constexpr double kGl8w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-
 // Integrates f over [a, b] with `panels` composite 8-point Gauss–Legendre panels.
 template <class F>
 void gauss_legendre(double a, double b, int panels, F&& f) {
@@ -51,8 +48,8 @@ void gauss_legendre(double a, double b, int panels, F&& f) {
   for (int p = 0; p < panels; ++p) {
     const double c = a + (p + 0.5) * h, half = 0.5 * h;
     for (int k = 0; k < 4; ++k) {
-      f(c - half * kGl8x[k], half * kGl8w[k]);
-      f(c + half * kGl8x[k], half * kGl8w[k]);
+      f(c - half * kGauss8HalfNodes[k], half * kGauss8HalfWeights[k]);
+      f(c + half * kGauss8HalfNodes[k], half * kGauss8HalfWeights[k]);
     }
   }
 }

@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "geometry/core/gauss_legendre.h"
 #include "geometry/core/input_error.h"
 #include "lighting/atmosphere/phase_functions.h"
 
@@ -121,15 +122,13 @@ void SkyTable::radiance_into(const Vec3& view_dir, Spectrum& out) const {
 
 Spectrum SkyTable::horizontal_irradiance() const {
   // Gauss–Legendre nodes: 4 panels × 8 in μ = cos θ ∈ [0, 1], 8 panels × 8 in φ ∈ [0, π].
-  static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-  static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
   auto nodes = [](double a, double b, int panels, std::vector<double>& x, std::vector<double>& w) {
     const double h = (b - a) / panels;
     for (int p = 0; p < panels; ++p)
       for (int k = 0; k < 4; ++k)
         for (int sgn = -1; sgn <= 1; sgn += 2) {
-          x.push_back(a + (p + 0.5) * h + sgn * 0.5 * h * x8[k]);
-          w.push_back(0.5 * h * w8[k]);
+          x.push_back(a + (p + 0.5) * h + sgn * 0.5 * h * kGauss8HalfNodes[k]);
+          w.push_back(0.5 * h * kGauss8HalfWeights[k]);
         }
   };
   std::vector<double> mu, wmu, phi, wphi;

@@ -7,15 +7,16 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "geometry/core/gauss_legendre.h"
+
 namespace skyband {
 
 namespace {
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kNodes = SkyColumnTable::kElevationCells + 1;
-constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;    // radians
-constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;     // radians
-constexpr double x2[2] = {-0.5773502691896258, 0.5773502691896258};  // ±1/√3, weights 1
+constexpr double kDe = kHalfPi / SkyColumnTable::kElevationCells;  // radians
+constexpr double kDphi = kTwoPi / SkyColumnTable::kAzimuthCells;   // radians
 }  // namespace
 
 SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
@@ -29,7 +30,7 @@ SkyColumnTable::SkyColumnTable(const ProjectedSkyGrid& grid, int threads)
       // From the zenith down: node j holds the integrals over [e_j, π/2].
       for (int j = kElevationCells - 1; j >= 0; --j) {
         for (int g = 0; g < 2; ++g) {  // 2-node Gauss–Legendre per 0.25° cell: exact for cubics
-          const double e = (j + 0.5 * (1 + x2[g])) * kDe, ce = std::cos(e), se = std::sin(e);
+          const double e = (j + 0.5 * (1 + kGauss2Nodes[g])) * kDe, ce = std::cos(e), se = std::sin(e);
           grid.lookup_n<kChannels>(Vec3(ce * cp, ce * sp, se), l);
           const double w = 0.5 * kDe;
           for (int k = 0; k < kChannels; ++k) {

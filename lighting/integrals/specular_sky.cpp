@@ -67,8 +67,8 @@ Line segment_line(const PointVisibilityView& v, const Segment& s, int j) {
   } else {
     // Piece j/3 of count/3 equal-δ pieces, Gauss–Legendre node j%3, weight (h/2)·w·cos(δ − β)
     // (the δ-measure of N·ω dω, band_frame.h).
-    const double* x = s.nodes == 2 ? kGl2X : kGl3X;
-    const double* w = s.nodes == 2 ? kGl2W : kGl3W;
+    const double* x = s.nodes == 2 ? kGauss2Nodes : kGauss3Nodes;
+    const double* w = s.nodes == 2 ? kGauss2Weights : kGauss3Weights;
     const double h = (s.d1_rad - s.d0_rad) / (s.count / s.nodes);
     const double mid = s.d0_rad + (j / s.nodes + 0.5) * h;
     line.delta_rad = mid + 0.5 * h * x[j % s.nodes];
@@ -81,7 +81,7 @@ Line segment_line(const PointVisibilityView& v, const Segment& s, int j) {
 int nearest_line(const Segment& s, double delta_rad) {
   if (s.count <= 1 || !(s.d1_rad > s.d0_rad)) return 0;
   const int pieces = s.count / s.nodes;
-  const double* xs = s.nodes == 2 ? kGl2X : kGl3X;
+  const double* xs = s.nodes == 2 ? kGauss2Nodes : kGauss3Nodes;
   const double h = (s.d1_rad - s.d0_rad) / pieces;
   const double x = (delta_rad - s.d0_rad) / h;
   const int piece = std::clamp(static_cast<int>(x), 0, pieces - 1);
@@ -135,8 +135,8 @@ AlphaCells alpha_cells(double step_rad) {
   c.half = 0.5 * step_rad;
   c.cos_half = std::cos(c.half);
   c.sin_half = std::sin(c.half);
-  c.cos_d = std::cos(c.half * kGl3X[2]);
-  c.sin_d = std::sin(c.half * kGl3X[2]);
+  c.cos_d = std::cos(c.half * kGauss3Nodes[2]);
+  c.sin_d = std::sin(c.half * kGauss3Nodes[2]);
   c.cos_step = std::cos(step_rad);
   c.sin_step = std::sin(step_rad);
   return c;

@@ -59,8 +59,8 @@
 // SpectralReflection below integrates spectra (41 channels, the library's reference path);
 // specular_sky_colour.h integrates a few colour channels for the renderer.
 //
-// specular_sky_reference() integrates the same quantity without truncation, with an independent
-// rule (3-point Gauss–Legendre in δ per piece, 4-point Gauss–Legendre along α on every visible
+// specular_sky_reference() (specular_sky_reference.h) integrates the same quantity without
+// truncation, with an independent rule (3-point Gauss–Legendre in δ per piece, 4-point Gauss–Legendre along α on every visible
 // interval, both on pieces ≤ c·m and ≤ a cap): the oracle of tests and benchmarks.
 #include <algorithm>
 #include <cmath>
@@ -72,150 +72,15 @@
 #include "geometry/bands/band_frame.h"
 #include "geometry/bands/sky_integral.h"
 #include "geometry/bands/visibility_cache.h"
+#include "geometry/core/gauss_legendre.h"
 #include "lighting/brdf/cook_torrance.h"
-#include "lighting/integrals/fast_exp.h"
+#include "lighting/integrals/specular_lobe_factor.h"
+#include "lighting/integrals/specular_sky_options.h"
 #include "lighting/spectrum/spectrum.h"
-
-#if defined(__GNUC__) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 namespace skyband {
 
-struct SpecularSkyOptions {
-  double epsilon = 1e-3;            // truncation threshold, relative to G_max (seed's ε)
-  double alpha_step_per_m = 2.0;    // α cells ≤ alpha_step_per_m · m ...
-  double max_alpha_step_rad = 0.1;  // ... and ≤ this (sky variation under wide lobes)
-  double delta_step_per_m = 2.0;    // δ pieces ≤ delta_step_per_m · m ...
-  double max_delta_step_rad = 0.2;  // ... and ≤ this
-  double single_line_per_m = 0.5;   // a band ≤ this · m wide in δ is one line (seed eq. 7)
-  double min_compression = 0.02;    // floor of N·V in the lobe's width across the plane of incidence
-  int stop_after = 2;               // consecutive cells (lines) below ε that end a march (sweep)
-  double lobe_window_per_m = 7.0;   // lines are integrated only within this · m of Q in α: step 4
-  double mirror_below_m = 0.005;    // m below this: perfect mirror (single look-up)
-};
-
-struct SpecularSkyStats {
-  std::size_t radiance_evals = 0;  // sky radiance evaluations
-  std::size_t lines = 0;           // sample lines integrated
-};
-
 namespace specular_detail {
-
-// The constants of the lobe factor k(ω) = w_s·D_n(N·H)·G/(4(N·L)(N·V)) (×4 with paper_scale;
-// cook_torrance.h, beckmann.h) at one point: everything that does not depend on ω.
-struct LobeConstants {
-  double inv_m2 = 0;  // 1/m²
-  double scale = 0;   // w_s·(paper_scale ? 4 : 1)/(4·π·m²·(N·V)): D_n's 1/(π m²), f_s's 1/(4 N·V)
-  double n_dot_v = 0;
-};
-LobeConstants lobe_constants(const SpecularLobe& lobe, double n_dot_v);
-
-// k(ω) of SpecularLobe::factor_fast for a unit direction L = ω from its cosines N·L and V·L
-// alone (unit N, V; N·V > 0 in `k`). With a = 1 + V·L = |L + V|²/2 and b = N·L + N·V
-// (= |L + V|·N·H), H = (L + V)/|L + V|:
-//     1/cos²θ_h = |L + V|²/b² = 2a/b²,   V·H = a/|L + V| = √(a/2),
-//     D_n = e^{−x}/(π m² cos⁴θ_h),  x = tan²θ_h/m² = (1/cos²θ_h − 1)/m²             (Beckmann),
-//     G/(N·L) = min{V·H, 2(N·H)·min(N·V, N·L)}/((V·H)(N·L))
-//             = min{a, 2b·min(N·V, N·L)}/(a·N·L)        (|L + V| cancels)     (Cook–Torrance),
-// the same formulas as cook_torrance_lobe_with with one division (r = 1/(b²·a·N·L) serves both
-// quotients: 1/b² = r·a·N·L, 1/(a·N·L) = r·b²) and one square root (V·H, for the Fresnel
-// factor). 0 where the BRDF is 0 (L or V at or below the surface, L = −V, N·H ≤ 0);
-// *exponent = x where N·H > 0 (else untouched); *v_dot_h = V·H. (specular_sky_test checks it
-// against cook_torrance_lobe.)
-inline double lobe_factor(const LobeConstants& k, double n_dot_l, double v_dot_l, double& v_dot_h, double* exponent = nullptr) {
-  if (!(n_dot_l > 0.0)) return 0.0;
-  const double a = 1.0 + v_dot_l;
-  const double b = n_dot_l + k.n_dot_v;
-  if (!(a > 0.0) || !(b > 0.0)) return 0.0;
-  v_dot_h = std::sqrt(0.5 * a);
-  const double b2 = b * b;
-  const double r = 1.0 / (b2 * a * n_dot_l);
-  const double inv_c2 = 2.0 * a * (r * a * n_dot_l);
-  const double x = std::max(inv_c2 - 1.0, 0.0) * k.inv_m2;  // ≥ 0 (rounding near the peak)
-  if (exponent) *exponent = x;
-  const double g_over_nl = std::min(a, 2.0 * b * std::min(k.n_dot_v, n_dot_l)) * (r * b2);
-  return k.scale * exp_neg(x) * inv_c2 * inv_c2 * g_over_nl;
-}
-
-#if defined(__GNUC__) && defined(__x86_64__)
-#define SKYBAND_LOBE_AVX2 1
-// lobe_factor for three directions at once in the four lanes of AVX2 registers (the fourth lane
-// a copy of the third): the same formulas in the same order, e^{−x} by exp_neg's table (a
-// gather) and polynomial. Lanes whose x leaves exp_neg's table range [0, 64) are recomputed by
-// the scalar lobe_factor (std::exp). k[n] = factor·sin²α_n; x[n] set where the factor's
-// N·H > 0 (else left untouched), v_dot_h[n] where the factor is positive. Only called from code
-// compiled for AVX2 + FMA (ColourSpecularSky's dispatched build); specular_sky_colour_test
-// compares that build with the portable one.
-__attribute__((target("avx2,fma"))) inline void lobe_factor3_avx2(const LobeConstants& lk, const double (&n_dot_l)[3],
-                                                                  const double (&v_dot_l)[3], const double (&sin_a)[3],
-                                                                  double (&k)[3], double (&v_dot_h)[3], double (&x)[3]) {
-  using namespace fast_exp_detail;
-  const __m256d nl = _mm256_setr_pd(n_dot_l[0], n_dot_l[1], n_dot_l[2], n_dot_l[2]);
-  const __m256d vl = _mm256_setr_pd(v_dot_l[0], v_dot_l[1], v_dot_l[2], v_dot_l[2]);
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), two = _mm256_set1_pd(2.0);
-  const __m256d a = _mm256_add_pd(one, vl);
-  const __m256d b = _mm256_add_pd(nl, _mm256_set1_pd(lk.n_dot_v));
-  // N·L > 0, a > 0, b > 0 (ordered compares: false for NaN, as the scalar tests)
-  const __m256d valid = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(nl, zero, _CMP_GT_OQ), _mm256_cmp_pd(a, zero, _CMP_GT_OQ)),
-                                      _mm256_cmp_pd(b, zero, _CMP_GT_OQ));
-  const __m256d as = _mm256_blendv_pd(one, a, valid), bs = _mm256_blendv_pd(one, b, valid);
-  const __m256d nls = _mm256_blendv_pd(one, nl, valid);
-  const __m256d vh = _mm256_sqrt_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), as));
-  const __m256d b2 = _mm256_mul_pd(bs, bs);
-  const __m256d r = _mm256_div_pd(one, _mm256_mul_pd(_mm256_mul_pd(b2, as), nls));
-  const __m256d inv_c2 = _mm256_mul_pd(_mm256_mul_pd(two, as), _mm256_mul_pd(_mm256_mul_pd(r, as), nls));
-  const __m256d xv = _mm256_mul_pd(_mm256_max_pd(_mm256_sub_pd(inv_c2, one), zero), _mm256_set1_pd(lk.inv_m2));
-  const __m256d gnl =
-      _mm256_mul_pd(_mm256_min_pd(as, _mm256_mul_pd(_mm256_mul_pd(two, bs), _mm256_min_pd(_mm256_set1_pd(lk.n_dot_v), nls))),
-                    _mm256_mul_pd(r, b2));
-  // exp_neg: e^{−j/64} from the table times the degree-4 Taylor polynomial of e^{−f}.
-  const __m256d in_range = _mm256_cmp_pd(xv, _mm256_set1_pd(static_cast<double>(kEntries - 1) / kSteps), _CMP_LT_OQ);
-  const __m256d xs = _mm256_blendv_pd(zero, xv, in_range);
-  const __m256d sx = _mm256_mul_pd(xs, _mm256_set1_pd(static_cast<double>(kSteps)));
-  const __m128i j = _mm256_cvttpd_epi32(sx);
-  const __m256d f = _mm256_div_pd(_mm256_sub_pd(sx, _mm256_cvtepi32_pd(j)), _mm256_set1_pd(static_cast<double>(kSteps)));
-  __m256d poly = _mm256_sub_pd(_mm256_set1_pd(1.0 / 6.0), _mm256_mul_pd(f, _mm256_set1_pd(1.0 / 24.0)));
-  poly = _mm256_sub_pd(_mm256_set1_pd(0.5), _mm256_mul_pd(f, poly));
-  poly = _mm256_sub_pd(one, _mm256_mul_pd(f, poly));
-  poly = _mm256_sub_pd(one, _mm256_mul_pd(f, poly));
-  // The masked gather with an explicit zero source and an all-ones mask is the plain gather;
-  // GCC 12's _mm256_i32gather_pd leaves its source uninitialised and warns (-Wmaybe-uninitialized).
-  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  const __m256d e = _mm256_mul_pd(_mm256_mask_i32gather_pd(zero, table().data(), j, all, 8), poly);
-  const __m256d s = _mm256_setr_pd(sin_a[0], sin_a[1], sin_a[2], sin_a[2]);
-  __m256d kv = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(lk.scale), e), _mm256_mul_pd(inv_c2, inv_c2)), gnl);
-  kv = _mm256_mul_pd(_mm256_mul_pd(kv, s), s);
-  alignas(32) double kk[4], xx[4], hh[4];
-  _mm256_store_pd(kk, kv);
-  _mm256_store_pd(xx, xv);
-  _mm256_store_pd(hh, vh);
-  const int ok = _mm256_movemask_pd(valid), fast = _mm256_movemask_pd(in_range);
-  for (int n = 0; n < 3; ++n) {
-    if (!(ok >> n & 1)) {
-      k[n] = 0.0;
-    } else if (!(fast >> n & 1)) {  // x beyond the table: the scalar path
-      k[n] = lobe_factor(lk, n_dot_l[n], v_dot_l[n], v_dot_h[n], &x[n]) * sin_a[n] * sin_a[n];
-    } else {
-      k[n] = kk[n];
-      x[n] = xx[n];
-      v_dot_h[n] = hh[n];
-    }
-  }
-}
-#else
-#define SKYBAND_LOBE_AVX2 0
-#endif
-
-// Whether a reflection policy asks for the AVX2 lobe factor (`static constexpr bool kAvx2 = true`,
-// only in code compiled for AVX2 + FMA).
-template <class P>
-constexpr bool wants_avx2_lobe() {
-  if constexpr (requires { P::kAvx2; })
-    return P::kAvx2 && SKYBAND_LOBE_AVX2;
-  else
-    return false;
-}
 
 // One sample line: plane δ, its weight (the s-measure it represents) and the cached band whose
 // visibility it uses; u = cos δ·h + sin δ·z spans the plane with x.
@@ -291,13 +156,6 @@ struct AlphaCells {
 };
 AlphaCells alpha_cells(double step_rad);
 
-// 3-point Gauss–Legendre on [−1, 1].
-// 2-point Gauss–Legendre on [−1, 1].
-inline constexpr double kGl2X[2] = {-0.5773502691896258, 0.5773502691896258};
-inline constexpr double kGl2W[2] = {1.0, 1.0};
-inline constexpr double kGl3X[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-inline constexpr double kGl3W[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
-
 // How far into the lobe a sample is, for the stop tests: its G, and the Beckmann exponent
 // x = tan²θ_h/m², which still orders samples where G has underflowed to 0 (e^{−x} < 10⁻³⁰⁸
 // beyond x ≈ 708, i.e. θ_h > 29° for m = 0.02): a march must not take such a plateau for a
@@ -371,7 +229,7 @@ void integrate_nodes3(const PointContext& c, const Line& line, const double (&co
       if (k[n] > 0.0) {
         ++stats.radiance_evals;
         l[n].g = g[n];
-        if (l[n].g > 0.0) cell += out[n] * (half * kGl3W[n]);
+        if (l[n].g > 0.0) cell += out[n] * (half * kGauss3Weights[n]);
       }
       raise(level, l[n]);
     }
@@ -380,7 +238,7 @@ void integrate_nodes3(const PointContext& c, const Line& line, const double (&co
       if (k[n] > 0.0) {
         ++stats.radiance_evals;
         l[n].g = p.eval(cos_a[n] * f.x + sin_a[n] * line.u, v_dot_h[n], k[n], scratch);
-        if (l[n].g > 0.0) cell += scratch * (half * kGl3W[n]);
+        if (l[n].g > 0.0) cell += scratch * (half * kGauss3Weights[n]);
       }
       raise(level, l[n]);
     }
@@ -464,8 +322,8 @@ void march(const PointContext& c, const Line& line, double alpha_star, double co
         } else {
           const double mid = 0.5 * (lo + hi);
           half = 0.5 * (hi - lo);
-          sin_d = std::sin(half * kGl3X[2]);
-          cos_d = std::cos(half * kGl3X[2]);
+          sin_d = std::sin(half * kGauss3Nodes[2]);
+          cos_d = std::cos(half * kGauss3Nodes[2]);
           sm = std::sin(mid);
           cm = std::cos(mid);
         }
@@ -664,59 +522,6 @@ Spectrum specular_sky_radiance(const PointVisibilityView& view, const Vec3& view
   const Spectrum r = specular_detail::specular_sky_integral(view, view_dir, lobe, p, opt, stats);
   if (stats_out) *stats_out = stats;
   return r;
-}
-
-// Reference: the same integral over every band and visible interval without truncation.
-// Pieces in δ and α are ≤ min(step_per_m·m, max_step_rad); 3-point GL in δ (weight cos(δ − β)),
-// 4-point GL along α. Perfect mirrors (m < opt.mirror_below_m) use the same look-up as above.
-template <class Radiance>
-Spectrum specular_sky_reference(const PointVisibilityView& view, const Vec3& view_dir, const SpecularLobe& lobe, Radiance&& sky,
-                                double step_per_m = 0.5, double max_step_rad = 0.02, const SpecularSkyOptions& opt = {},
-                                SpecularSkyStats* stats_out = nullptr) {
-  using namespace specular_detail;
-  static constexpr double x4[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-  static constexpr double w4[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-  SpecularSkyStats stats;
-  Spectrum acc;
-  PointContext c;
-  SpectralReflection<std::remove_reference_t<Radiance>> p{sky, lobe.fresnel};
-  if (trivial_case(view, view_dir, lobe, p, opt, c, stats, acc)) {
-    if (stats_out) *stats_out = stats;
-    return acc;
-  }
-  const BandFrame& f = view.frame();
-  const double step = std::min(step_per_m * lobe.roughness_m, max_step_rad);
-  Spectrum val;
-  for (std::size_t b = 0; b < view.band_count(); ++b) {
-    const double d0 = f.delta_at(view.band(b).s0), d1 = f.delta_at(view.band(b).s1);
-    const int kd = std::max(1, static_cast<int>(std::ceil((d1 - d0) / step)));
-    const double hd = (d1 - d0) / kd;
-    for (int pc = 0; pc < kd; ++pc)
-      for (int gd = 0; gd < 3; ++gd) {
-        Line line;
-        line.band = b;
-        line.delta_rad = d0 + (pc + 0.5) * hd + 0.5 * hd * kGl3X[gd];
-        line.u = std::cos(line.delta_rad) * f.h + std::sin(line.delta_rad) * f.z;
-        line.weight = 0.5 * hd * kGl3W[gd] * std::cos(line.delta_rad - f.beta_rad);
-        line = with_dots(c, line);
-        Spectrum line_sum;
-        for (const VisibleInterval& iv : view.visible(b)) {
-          const double a0 = clamp_alpha(iv.alpha0_rad), a1 = clamp_alpha(iv.alpha1_rad);
-          if (!(a1 > a0)) continue;
-          const int ka = std::max(1, static_cast<int>(std::ceil((a1 - a0) / step)));
-          const double ha = (a1 - a0) / ka;
-          for (int q = 0; q < ka; ++q)
-            for (int ga = 0; ga < 4; ++ga) {
-              const double a = a0 + (q + 0.5) * ha + 0.5 * ha * x4[ga];
-              if (integrand(c, line, a, p, val, stats) > 0.0) line_sum += val * (0.5 * ha * w4[ga]);
-            }
-        }
-        acc += line_sum * line.weight;
-        ++stats.lines;
-      }
-  }
-  if (stats_out) *stats_out = stats;
-  return acc;
 }
 
 }  // namespace skyband

@@ -8,6 +8,7 @@
 #include "lighting/brdf/fresnel.h"
 #include "lighting/brdf/material.h"
 #include "lighting/integrals/specular_sky.h"
+#include "lighting/integrals/specular_sky_reference.h"
 #include "lighting/support/analytic_sky.h"
 #include "lighting/support/hand_cache.h"
 
