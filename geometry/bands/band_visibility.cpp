@@ -1,20 +1,16 @@
-// Exact band visibility (method.md §2–3). See band_visibility.h for the robustness policy and
-// docs/geometry.md for the design (pencil of planes, BVH occlusion culling, refinement).
+// Exact band visibility of one point (method.md §2–3): the pencil of sample planes, the culls
+// and BVH traversal, the exact plane–triangle crossing, and adaptive refinement. The occluded
+// spans of a line are occluded_spans.h, the refined bands' rule band_rule.h, the parallel driver
+// band_visibility_driver.cpp. See band_visibility.h for the robustness policy and
+// docs/geometry.md for the design.
 #include "geometry/bands/band_visibility.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <map>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-#include <mutex>
+#include <vector>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
+#include "geometry/bands/band_rule.h"
+#include "geometry/bands/occluded_spans.h"
 #include "geometry/bands/sky_integral.h"
 #include "geometry/core/exact_sign.h"
 #include "geometry/core/pseudo_angle.h"
@@ -23,10 +19,10 @@ namespace skyband {
 
 namespace {
 
-// An occluded interval on a sample line, in pseudo-angle units (pseudo_angle.h): [0, 2] ↔ [0, π].
-struct Span {
-  double lo, hi;
-};
+using band_detail::covered;
+using band_detail::first_reaching;
+using band_detail::insert_span;
+using band_detail::Span;
 
 // A sample half-plane through the point: all directions cos α·x + sin α·u, u = cos δ·h + sin δ·z.
 struct Plane {
@@ -52,81 +48,6 @@ struct BandState {
   double cached_error = -1;           // band_error() once computed (its lines never change), else −1
   double cached_exposure_error = -1;  // band_exposure_error(), with cached_error
 };
-
-// Weights (w0, wm, w1) of the interpolatory rule on nodes δ0, δm, δ1 for ∫_{δ0}^{δ1} g(δ) cos(δ − β) dδ
-// (exact for quadratic g), and m0 = ∫ cos(δ − β) dδ, the midpoint rule's weight. With t = δ − δm,
-// h = (δ1 − δ0)/2, γ = δm − β, the moments of cos(t + γ) over [−h, h] are
-//   m0 = 2 sin h cos γ,  m1 = −2 sin γ (sin h − h cos h),  m2 = 2 cos γ ((h² − 2) sin h + 2h cos h),
-// and the Lagrange weights are w0 = (m2 − h m1)/2h², wm = (h² m0 − m2)/h², w1 = (m2 + h m1)/2h².
-// Integrating in δ, not in s = sin(δ − β), matters: f is smooth in δ but has a square-root
-// singularity in s at the face's own plane (δ − β = ±π/2).
-struct BandRule {
-  double w0, wm, w1, m0;
-};
-BandRule band_rule(double d0, double d1, double beta) {
-  const double h = 0.5 * (d1 - d0), g = 0.5 * (d0 + d1) - beta;
-  double s1, s2;  // ∫_0^h t sin t dt, ∫_0^h t² cos t dt (Taylor series where they cancel)
-  if (h < 0.05) {
-    const double h2 = h * h, h3 = h2 * h;
-    s1 = h3 * (1.0 / 3 - h2 * (1.0 / 30 - h2 * (1.0 / 840 - h2 / 45360)));
-    s2 = h3 * (1.0 / 3 - h2 * (1.0 / 10 - h2 * (1.0 / 168 - h2 / 6480)));
-  } else {
-    s1 = std::sin(h) - h * std::cos(h);
-    s2 = (h * h - 2) * std::sin(h) + 2 * h * std::cos(h);
-  }
-  BandRule r;
-  r.m0 = 2 * std::sin(h) * std::cos(g);
-  const double m1 = -2 * std::sin(g) * s1, m2 = 2 * std::cos(g) * s2;
-  if (h <= 0) return {0, 0, 0, 0};
-  r.w0 = (m2 - h * m1) / (2 * h * h);
-  r.wm = (h * h * r.m0 - m2) / (h * h);
-  r.w1 = (m2 + h * m1) / (2 * h * h);
-  return r;
-}
-
-// First span of a sorted merged list with hi ≥ x (short lists scanned linearly: faster there).
-inline std::vector<Span>::iterator first_reaching(std::vector<Span>& v, double x) {
-  if (v.size() <= 16) {
-    auto it = v.begin();
-    while (it != v.end() && it->hi < x) ++it;
-    return it;
-  }
-  return std::lower_bound(v.begin(), v.end(), x, [](const Span& s, double y) { return s.hi < y; });
-}
-
-// Inserts [lo, hi] into a sorted merged list (touching intervals merge: shared end points of
-// triangles sharing an edge are bit-identical, so a closed surface leaves no gap). Returns false,
-// leaving the list unchanged, when [lo, hi] already lies inside one span.
-bool insert_span(std::vector<Span>& v, double lo, double hi) {
-  auto first = first_reaching(v, lo);
-  if (first != v.end() && first->lo <= lo && first->hi >= hi) return false;
-  auto last = first;
-  while (last != v.end() && last->lo <= hi) {
-    lo = std::min(lo, last->lo);
-    hi = std::max(hi, last->hi);
-    ++last;
-  }
-  if (first == last) {
-    v.insert(first, Span{lo, hi});
-  } else {
-    *first = Span{lo, hi};
-    v.erase(first + 1, last);
-  }
-  return true;
-}
-
-// Is [lo, hi] inside one occluded span? The hottest test of the traversal (per node and plane,
-// per triangle and plane): short lists are scanned linearly, which beats a binary search there.
-bool covered(const std::vector<Span>& v, double lo, double hi) {
-  const std::size_t n = v.size();
-  if (n <= 16) {
-    for (std::size_t i = 0; i < n; ++i)
-      if (v[i].hi >= lo) return v[i].lo <= lo && v[i].hi >= hi;
-    return false;
-  }
-  auto it = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
-  return it != v.end() && it->lo <= lo && it->hi >= hi;
-}
 
 }  // namespace
 
@@ -946,92 +867,6 @@ std::size_t BandVisibility::last_triangle_tests() const {
 }
 std::size_t BandVisibility::last_plane_count() const {
   return impl_->plane_count;
-}
-
-namespace {
-// Points per chunk: at most 256 (the hand-over is a few µs against ~1 ms per point, and a large
-// run keeps few, large parts), and at least 16 chunks per worker, so that the last chunk of a
-// small run (2,000 points: 62 per chunk, not 256) leaves the other core idle only briefly.
-std::size_t chunk_size(std::size_t points, int workers) {
-  const std::size_t per = points / (16 * static_cast<std::size_t>(std::max(workers, 1)));
-  return std::clamp<std::size_t>(per, 16, 256);
-}
-}  // namespace
-
-void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
-                               int threads, const std::function<void(std::size_t, std::size_t)>& progress,
-                               const VisibilityChunkConsumer& consume) {
-  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-  const std::size_t chunk = chunk_size(points.size(), n);
-  const std::size_t chunks = (points.size() + chunk - 1) / chunk;
-  tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  auto body = [&](const tbb::blocked_range<std::size_t>& range) {
-    auto& worker = workers.local();
-    if (!worker) worker = std::make_unique<BandVisibility>(scene, options);
-    VisibilityCache::PointResult result;
-    for (std::size_t c = range.begin(); c != range.end(); ++c) {
-      const std::size_t first = c * chunk, last = std::min(points.size(), first + chunk);
-      VisibilityCache part;
-      part.reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
-      for (std::size_t i = first; i < last; ++i) {
-        worker->compute(points[i], result);
-        part.append(result);
-      }
-      consume(first, part, *worker);
-      const std::size_t now = done += (last - first);
-      if (progress) {
-        std::unique_lock lock(progress_mutex, std::try_to_lock);
-        if (lock.owns_lock()) progress(now, points.size());
-      }
-    }
-  };
-  tbb::task_arena arena(n);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), body); });
-  if (progress) progress(points.size(), points.size());
-}
-
-VisibilityCache compute_visibility(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
-                                   int threads, const std::function<void(std::size_t, std::size_t)>& progress) {
-  // Parts keyed by their first point (chunks arrive in any order), then concatenated in order.
-  std::map<std::size_t, VisibilityCache> parts;
-  std::mutex parts_mutex;
-  for_each_visibility_chunk(scene, points, options, threads, progress,
-                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) {
-                              std::lock_guard lock(parts_mutex);
-                              parts.emplace(first, std::move(part));
-                            });
-  VisibilityCache cache;
-  std::size_t bands = 0;
-  for (const auto& [first, part] : parts) bands += part.bands().size();
-  cache.reserve(points.size(), points.empty() ? 0 : bands / points.size() + 1);
-  // Each part is released once copied, and every 32 parts the freed heap pages are handed back
-  // to the system (glibc keeps freed blocks of this size mapped otherwise): the resident peak is
-  // then about the cache plus 32 parts, not twice the cache.
-  std::size_t released = 0;
-  for (auto& [first, part] : parts) {
-    cache.append(part);
-    part = VisibilityCache{};
-#ifdef __GLIBC__
-    if (++released % 32 == 0) malloc_trim(0);
-#endif
-  }
-  return cache;
-}
-
-std::vector<SkyFactors> compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points,
-                                            const VisibilityOptions& options, int threads,
-                                            const std::function<void(std::size_t, std::size_t)>& progress) {
-  std::vector<SkyFactors> out(points.size());
-  for_each_visibility_chunk(scene, points, options, threads, progress,
-                            [&](std::size_t first, VisibilityCache& part, BandVisibility&) {
-                              for (std::size_t i = 0; i < part.size(); ++i) {
-                                const PointVisibilityView v = part.view(i);
-                                out[first + i] = SkyFactors{sky_view_factor(v), sky_exposure(v)};
-                              }
-                            });
-  return out;
 }
 
 }  // namespace skyband

@@ -97,9 +97,9 @@ struct SkyFactors {
 // SVF and sky exposure for many points without keeping their visibility cache: memory stays
 // O(points), not O(points × bands). Bit-identical to sky_view_factor/sky_exposure of
 // compute_visibility's cache, whatever the thread count.
-std::vector<SkyFactors> compute_sky_factors(const Scene& scene, std::span<const QueryPoint> points,
-                                            const VisibilityOptions& options, int threads = 0,
-                                            const std::function<void(std::size_t, std::size_t)>& progress = {});
+std::vector<SkyFactors> compute_band_sky_factors(const Scene& scene, std::span<const QueryPoint> points,
+                                                 const VisibilityOptions& options, int threads = 0,
+                                                 const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 // Computes the cache for many points with `threads` workers (0 = all cores). The result is
 // bit-identical whatever the thread count. `progress(done, total)` is called from one thread.

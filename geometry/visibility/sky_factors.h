@@ -15,7 +15,7 @@ namespace skyband {
 enum class SkyFactorsMethod {
   automatic,  // the exact horizon where valid, the exact visible sky elsewhere
   exact,      // the exact visible sky (geometry/exact/exact_sky.h) everywhere
-  bands,      // the band method everywhere (identical to compute_sky_factors)
+  bands,      // the band method everywhere (identical to compute_band_sky_factors, band_visibility.h)
 };
 
 struct SkyFactorsRun {

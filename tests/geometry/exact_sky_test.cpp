@@ -257,7 +257,7 @@ BOOST_AUTO_TEST_CASE(projected_coordinates_threads_and_the_band_method) {
   fine.bands = 4096;
   fine.tolerance = 0;
   fine.axis_tail_rad = 0;
-  const std::vector<SkyFactors> bands = compute_sky_factors(scene, std::span(pts).first(12), fine, 0);
+  const std::vector<SkyFactors> bands = compute_band_sky_factors(scene, std::span(pts).first(12), fine, 0);
   for (std::size_t i = 0; i < bands.size(); ++i) {
     BOOST_TEST(std::abs(bands[i].svf - one.factors[i].svf) < 2e-5, "point " << i);
     BOOST_TEST(std::abs(bands[i].sky_exposure - one.factors[i].sky_exposure) < 2e-4, "point " << i);

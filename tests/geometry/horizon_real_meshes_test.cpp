@@ -197,7 +197,7 @@ void check_agreement(const Scene& scene, std::span<const QueryPoint> points, std
   std::vector<SkyFactors> h(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     BOOST_TEST_REQUIRE(horizon.compute(points[i], h[i]), what << ": declined " << points[i].position.transpose());
-  const std::vector<SkyFactors> band = compute_sky_factors(scene, points, reference_bands(), 0);
+  const std::vector<SkyFactors> band = compute_band_sky_factors(scene, points, reference_bands(), 0);
   double worst_band = 0, worst_exact = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     worst_band = std::max(worst_band, std::abs(h[i].svf - band[i].svf));
