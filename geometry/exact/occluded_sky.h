@@ -40,7 +40,8 @@
 #include <span>
 #include <vector>
 
-#include "geometry/horizon/horizon_envelope.h"  // diamond_angle, diamond_direction
+#include "geometry/core/pseudo_angle.h"  // diamond_angle, diamond_direction
+#include "geometry/horizon/horizon_envelope.h"
 
 namespace skyband {
 

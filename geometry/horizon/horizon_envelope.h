@@ -29,37 +29,9 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/core/pseudo_angle.h"  // diamond_angle, diamond_direction
+
 namespace skyband {
-
-// Diamond angle of the horizontal direction (x, y) ≠ 0: 0 at +x, 1 at +y, 2 at −x, 3 at −y;
-// strictly monotone in the angle, and t(−w) = t(w) ± 2 (an arc shorter than π spans less than 2).
-inline double diamond_angle(double x, double y) {
-  if (y >= 0) {
-    if (x >= 0) {
-      const double s = x + y;
-      return s > 0 ? y / s : 0.0;
-    }
-    return 1.0 - x / (y - x);
-  }
-  if (x < 0) return 2.0 - y / (-x - y);
-  return 3.0 + x / (x - y);
-}
-
-// Unit horizontal direction of diamond angle t ∈ [0, 4].
-inline void diamond_direction(double t, double& wx, double& wy) {
-  double x, y;
-  if (t < 1)
-    x = 1 - t, y = t;
-  else if (t < 2)
-    x = 1 - t, y = 2 - t;
-  else if (t < 3)
-    x = t - 3, y = 2 - t;
-  else
-    x = t - 3, y = t - 4;
-  const double r = 1.0 / std::sqrt(x * x + y * y);
-  wx = x * r;
-  wy = y * r;
-}
 
 // Azimuth range [lo, hi] (diamond angles, lo ≤ hi, hi may exceed 4: through t = 0) of an xy box
 // seen from outside it, the box given by its offsets x0 ≤ x1, y0 ≤ y1 from the point (not all
