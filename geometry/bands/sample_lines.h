@@ -34,7 +34,7 @@ struct SampleLineOptions {
   int max_doublings = 6;    // the band count is doubled at most this many times
 };
 
-// The cache entry of one point with an exact visible sky: its band records (each band one line at
+// The cache entry of one point with an exact visible sky: its sample lines (each band one line at
 // its weight median, exposure weight the band's δ-width) and their visible intervals. Returns the
 // number of bands used.
 int sample_lines_of(const VisibleSky& sky, const SampleLineOptions& options, VisibilityCache::PointResult& out);

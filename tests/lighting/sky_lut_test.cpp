@@ -96,7 +96,7 @@ BOOST_AUTO_TEST_CASE(open_horizontal_face_overcast) {
     double sum = 0;
     for (std::size_t b = 0; b < v.band_count(); ++b) sum += v.band_weight(b) * std::sin(v.band(b).delta_rad);
     const double band_rule = (kPi * 2 / 2 + 8.0 / 3.0 * sum) / 3.0;
-    BOOST_TEST(e == band_rule, tt::tolerance(1e-6));  // float band records; GL exact for this sky
+    BOOST_TEST(e == band_rule, tt::tolerance(1e-6));  // sample lines stored in float; GL exact for this sky
     BOOST_TEST(std::abs(e - quoted[i]) <= 6e-5, "N = " << ns[i] << ": " << e);
     BOOST_TEST(std::abs(e - exact) <= std::abs(quoted[i] - exact) + 6e-5);
   }
@@ -105,7 +105,7 @@ BOOST_AUTO_TEST_CASE(open_horizontal_face_overcast) {
 
 // Open vertical wall under overcast: here s = sin δ, so Σ w_b sin δ_b is the midpoint rule for
 // ∫_0^1 s ds, exact for any N: E = L_z(π/6 + 4/9) = 0.9680 L_z exactly (reference-notes §3.3).
-// Uniform sky: E = π/2 (SVF 0.5). Tolerances: float band records (≈1e-7) and interpolation.
+// Uniform sky: E = π/2 (SVF 0.5). Tolerances: sample lines stored in float (≈1e-7) and interpolation.
 BOOST_AUTO_TEST_CASE(open_wall) {
   for (int n : {3, 16, 64}) {
     const VisibilityCache vc = single_point_cache(Vec3(0.6, -0.8, 0), n);
