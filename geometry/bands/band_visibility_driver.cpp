@@ -1,8 +1,7 @@
-// The parallel driver of the band method: points in chunks on the workers, each with its own
-// BandVisibility, the chunks' caches gathered in point order (compute_visibility) or reduced to
-// sky factors at once (compute_band_sky_factors). Declared in band_visibility.h.
+// The parallel driver of the band method: points in chunks on the workers (for_each_chunk,
+// geometry/core/parallel_chunks.h), each with its own BandVisibility, the chunks' caches gathered in point order
+// (compute_visibility) or reduced to sky factors at once (compute_band_sky_factors). Declared in band_visibility.h.
 #include <algorithm>
-#include <atomic>
 #include <map>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -10,13 +9,11 @@
 #include <memory>
 #include <mutex>
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "geometry/bands/band_visibility.h"
 #include "geometry/bands/sky_integral.h"
+#include "geometry/core/parallel_chunks.h"
 
 namespace skyband {
 
@@ -34,33 +31,18 @@ void for_each_visibility_chunk(const Scene& scene, std::span<const QueryPoint> p
                                int threads, const std::function<void(std::size_t, std::size_t)>& progress,
                                const VisibilityChunkConsumer& consume) {
   const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-  const std::size_t chunk = chunk_size(points.size(), n);
-  const std::size_t chunks = (points.size() + chunk - 1) / chunk;
-  tbb::enumerable_thread_specific<std::unique_ptr<BandVisibility>> workers;
-  std::atomic<std::size_t> done{0};
-  std::mutex progress_mutex;
-  auto body = [&](const tbb::blocked_range<std::size_t>& range) {
-    auto& worker = workers.local();
-    if (!worker) worker = std::make_unique<BandVisibility>(scene, options);
-    VisibilityCache::PointResult result;
-    for (std::size_t c = range.begin(); c != range.end(); ++c) {
-      const std::size_t first = c * chunk, last = std::min(points.size(), first + chunk);
-      VisibilityCache part;
-      part.reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
-      for (std::size_t i = first; i < last; ++i) {
-        worker->compute(points[i], result);
-        part.append(result);
-      }
-      consume(first, part, *worker);
-      const std::size_t now = done += (last - first);
-      if (progress) {
-        std::unique_lock lock(progress_mutex, std::try_to_lock);
-        if (lock.owns_lock()) progress(now, points.size());
-      }
-    }
-  };
-  tbb::task_arena arena(n);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), body); });
+  for_each_chunk(
+      points.size(), chunk_size(points.size(), n), n, progress, [&] { return std::make_unique<BandVisibility>(scene, options); },
+      [&](BandVisibility& worker, std::size_t first, std::size_t last) {
+        VisibilityCache::PointResult result;
+        VisibilityCache part;
+        part.reserve(last - first, static_cast<std::size_t>(options.bands) + 8);
+        for (std::size_t i = first; i < last; ++i) {
+          worker.compute(points[i], result);
+          part.append(result);
+        }
+        consume(first, part, worker);
+      });
   if (progress) progress(points.size(), points.size());
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -16,12 +17,13 @@
 
 namespace skyband {
 
-// Calls body(state, i) for every i in [0, n), in chunks of `chunk` consecutive items on `threads`
-// workers (0 = all cores); `make_state()` returns a std::unique_ptr<State> for each worker that
-// needs one. `progress(done, n)` after chunks, from one thread at a time (may be empty).
-template <class MakeState, class Body>
-void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads,
-                        const std::function<void(std::size_t, std::size_t)>& progress, MakeState&& make_state, Body&& body) {
+// Calls chunk_body(state, first, last) for every chunk [first, last) of `chunk` consecutive items
+// of [0, n) (the last one shorter) on `threads` workers (0 = all cores); `make_state()` returns a
+// std::unique_ptr<State> for each worker that needs one. `progress(done, n)` after chunks, from one
+// thread at a time (may be empty).
+template <class MakeState, class ChunkBody>
+void for_each_chunk(std::size_t n, std::size_t chunk, int threads, const std::function<void(std::size_t, std::size_t)>& progress,
+                    MakeState&& make_state, ChunkBody&& chunk_body) {
   using StatePtr = decltype(make_state());
   tbb::enumerable_thread_specific<StatePtr> states;
   const std::size_t chunks = (n + chunk - 1) / chunk;
@@ -34,7 +36,7 @@ void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads,
       if (!state) state = make_state();
       for (std::size_t c = range.begin(); c != range.end(); ++c) {
         const std::size_t first = c * chunk, last = std::min(n, first + chunk);
-        for (std::size_t i = first; i < last; ++i) body(*state, i);
+        chunk_body(*state, first, last);
         const std::size_t now = done += last - first;
         if (progress) {
           std::unique_lock lock(progress_mutex, std::try_to_lock);
@@ -43,6 +45,16 @@ void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads,
       }
     });
   });
+}
+
+// Calls body(state, i) for every i in [0, n), in chunks as for_each_chunk.
+template <class MakeState, class Body>
+void for_each_in_chunks(std::size_t n, std::size_t chunk, int threads,
+                        const std::function<void(std::size_t, std::size_t)>& progress, MakeState&& make_state, Body&& body) {
+  for_each_chunk(n, chunk, threads, progress, std::forward<MakeState>(make_state),
+                 [&](auto& state, std::size_t first, std::size_t last) {
+                   for (std::size_t i = first; i < last; ++i) body(state, i);
+                 });
 }
 
 }  // namespace skyband
