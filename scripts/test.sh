@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The README's test command: install what is missing, build (warnings as errors), run every
-# test, build the benchmarks without the suites, then the sanitizer checks.
+# The README's test command: install what is missing, check the sources' layout, build (warnings
+# as errors), run every test, build the library example against the installed package, build the
+# benchmarks without the suites, then the sanitizer checks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
