@@ -267,7 +267,7 @@ HourlyNetcdfSpec hourly_spec(const IrradianceArgs& a, const WeatherSeries& serie
   const auto id = std::find(table.header.begin(), table.header.end(), "id");
   if (id != table.header.end())
     for (const auto& row : table.rows) spec.point_ids.push_back(row[static_cast<std::size_t>(id - table.header.begin())]);
-  spec.title = "skyband irradiance --weather: hourly irradiance on calculation points";
+  spec.title = "skyband irradiance --weather: hourly irradiance and illuminance on calculation points";
   spec.source = series.file.string() + " (" + series.location.name + ", " + fmt(series.location.latitude_deg) + " N, " +
                 fmt(series.location.longitude_deg) + " E, UTC" + (series.location.time_zone_hours >= 0 ? "+" : "") +
                 fmt(series.location.time_zone_hours) + ")";
@@ -329,9 +329,8 @@ void run_weather(const IrradianceArgs& a) {
   if (!a.hourly.empty()) hourly = std::make_unique<HourlyNetcdfWriter>(hourly_spec(a, series, table));
   ClimateHourlySink sink;
   if (hourly)
-    sink = [&](std::size_t i, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground) {
-      hourly->write(i, sky, sun, ground);
-    };
+    sink = [&](std::size_t i, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground,
+               std::span<const float> global_lx) { hourly->write(i, sky, sun, ground, global_lx); };
   const ClimateRun run = compute_point_climate(
       scene, table.points, hours, opt, [&](std::size_t d, std::size_t t) { progress(d, t); }, sink);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -509,8 +508,8 @@ CommandRegistration registration{
                       "ground: svf, sky_exposure, ground_view, global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2 "
                       "(broadband shortwave), global_klxh, sun_hours");
       cmd->add_option("--hourly", args->hourly,
-                      "With --weather: also the hourly irradiance of every point (sky, sun, ground, global; W/m2) as "
-                      "NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
+                      "With --weather: also the hourly irradiance of every point (sky, sun, ground, global; W/m2) and "
+                      "its global illuminance (lx) as NetCDF-4/CF, written as computed (xarray.open_dataset reads it)");
       cmd->add_option("--from", args->from, "With --weather: first day of the period, MM-DD (with --to; may wrap over new year)");
       cmd->add_option("--to", args->to, "With --weather: last day of the period, MM-DD (inclusive)");
       cmd->add_option("--sun-at", args->sun_at,

@@ -49,18 +49,20 @@ HourlyNetcdfWriter::HourlyNetcdfWriter(const HourlyNetcdfSpec& spec) : file_(spe
     text(v_xyz[k], "long_name", longs[k]);
   }
   const int dims[2] = {dim_point, dim_time};
-  const char* vars[4] = {"sky_W_m2", "sun_W_m2", "ground_W_m2", "global_W_m2"};
-  const char* what[4] = {"diffuse sky irradiance on the face (Perez all-weather sky)", "direct sun irradiance on the face",
-                         "ground-reflected irradiance on the face", "global irradiance on the face (sky + sun + ground)"};
+  const char* vars[5] = {"sky_W_m2", "sun_W_m2", "ground_W_m2", "global_W_m2", "global_lx"};
+  const char* what[5] = {"diffuse sky irradiance on the face (Perez all-weather sky)", "direct sun irradiance on the face",
+                         "ground-reflected irradiance on the face", "global irradiance on the face (sky + sun + ground)",
+                         "global illuminance on the face (sky + sun + ground)"};
   const std::size_t chunk[2] = {1, times_ > 0 ? times_ : 1};
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 5; ++k) {
     check(nc_def_var(ncid_, vars[k], NC_FLOAT, 2, dims, &var_[k]), vars[k]);
     if (n > 0 && times_ > 0) {
       check(nc_def_var_chunking(ncid_, var_[k], NC_CHUNKED, chunk), "chunking");
       check(nc_def_var_deflate(ncid_, var_[k], 1, 1, 1), "deflate");
     }
-    text(var_[k], "units", "W m-2");
-    text(var_[k], "long_name", std::string(what[k]) + ", mean over the interval, broadband shortwave");
+    text(var_[k], "units", k < 4 ? "W m-2" : "lx");
+    text(var_[k], "long_name",
+         std::string(what[k]) + (k < 4 ? ", mean over the interval, broadband shortwave" : ", mean over the interval"));
     text(var_[k], "cell_methods", "time: mean");
   }
   text(NC_GLOBAL, "Conventions", "CF-1.8");
@@ -104,7 +106,7 @@ HourlyNetcdfWriter::~HourlyNetcdfWriter() {
 }
 
 void HourlyNetcdfWriter::write(std::size_t point, std::span<const float> sky, std::span<const float> sun,
-                               std::span<const float> ground) {
+                               std::span<const float> ground, std::span<const float> global_lx) {
   const std::lock_guard lock(mutex_);
   const std::size_t start[2] = {point, 0}, count[2] = {1, times_};
   global_.resize(times_);
@@ -113,6 +115,7 @@ void HourlyNetcdfWriter::write(std::size_t point, std::span<const float> sky, st
   check(nc_put_vara_float(ncid_, var_[1], start, count, sun.data()), "sun_W_m2");
   check(nc_put_vara_float(ncid_, var_[2], start, count, ground.data()), "ground_W_m2");
   check(nc_put_vara_float(ncid_, var_[3], start, count, global_.data()), "global_W_m2");
+  check(nc_put_vara_float(ncid_, var_[4], start, count, global_lx.data()), "global_lx");
 }
 
 void HourlyNetcdfWriter::commit() {

@@ -10,6 +10,7 @@
 //   x, y, z, nx, ny, nz (point)        double, metres and the unit normal, as read
 //   sky_W_m2, sun_W_m2, ground_W_m2, global_W_m2 (point, time)   float, mean irradiance over the
 //                         interval on the point's face, broadband shortwave (W m-2)
+//   global_lx (point, time)  float, mean illuminance over the interval on the point's face (lx)
 //   global attributes: title, source (the weather file and its site), history (the command),
 //                      Conventions = "CF-1.8"
 //
@@ -44,8 +45,10 @@ class HourlyNetcdfWriter {
   HourlyNetcdfWriter(const HourlyNetcdfWriter&) = delete;
   HourlyNetcdfWriter& operator=(const HourlyNetcdfWriter&) = delete;
 
-  // One point's series (one value per interval each); thread-safe.
-  void write(std::size_t point, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground);
+  // One point's series (one value per interval each: irradiances in W m-2, the global illuminance
+  // in lx); thread-safe.
+  void write(std::size_t point, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground,
+             std::span<const float> global_lx);
   // Closes the file and renames it into place.
   void commit();
 
@@ -54,7 +57,7 @@ class HourlyNetcdfWriter {
   std::filesystem::path file_, temp_;
   std::size_t times_ = 0;
   int ncid_ = -1;
-  int var_[4] = {-1, -1, -1, -1};
+  int var_[5] = {-1, -1, -1, -1, -1};
   bool open_ = false;
   std::mutex mutex_;
   std::vector<float> global_;

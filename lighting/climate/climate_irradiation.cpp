@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <memory>
 
+#include "geometry/core/parallel_chunks.h"
 #include "geometry/visibility/sky_visibility.h"
 #include "lighting/integrals/daylight_coefficients.h"
 #include "lighting/integrals/visible_sky_integral.h"
@@ -64,7 +66,7 @@ namespace {
 
 // Each hour's sky at the daylight-coefficient nodes, normalised so that the open horizontal
 // face's coefficients give exactly the hour's DHI: [hour][node], W·m⁻²·sr⁻¹ (0 without sky).
-std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const VisibilityOptions& visibility) {
+std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const VisibilityOptions& visibility, int threads) {
   const std::vector<DaylightNode>& nodes = daylight_nodes();
   std::vector<float> open(nodes.size());
   {
@@ -73,21 +75,23 @@ std::vector<float> hourly_node_skies(std::span<const WeatherHour> hours, const V
     daylight_coefficients(up.compute(QueryPoint{Vec3(0, 0, 0), Vec3(0, 0, 1)}), visibility, open);
   }
   std::vector<float> out(hours.size() * nodes.size(), 0.0f);
-  std::vector<double> l(nodes.size());
-  for (std::size_t h = 0; h < hours.size(); ++h) {
-    const WeatherHour& w = hours[h];
-    if (!(w.dhi_W_m2 > 0)) continue;
-    const double zenith = std::acos(std::clamp(w.sun_dir.z(), -1.0, 1.0));
-    const PerezSky sky =
-        make_perez_sky(perez_sky_condition(w.dhi_W_m2, w.dni_W_m2, zenith, w.day_of_year), w.sun_dir, w.dhi_W_m2);
-    double e = 0;
-    for (std::size_t j = 0; j < nodes.size(); ++j) {
-      l[j] = std::max(0.0, nodes[j].a * sky.radiance(nodes[j].da) + nodes[j].b * sky.radiance(nodes[j].db));
-      e += open[j] * l[j];
-    }
-    const double k = e > 0 ? w.dhi_W_m2 / e : 0.0;
-    for (std::size_t j = 0; j < nodes.size(); ++j) out[h * nodes.size() + j] = static_cast<float>(k * l[j]);
-  }
+  // Each hour alone (its own row of `out`): the result does not depend on the thread count.
+  for_each_in_chunks(
+      hours.size(), 64, threads, {}, [&] { return std::make_unique<std::vector<double>>(nodes.size()); },
+      [&](std::vector<double>& l, std::size_t h) {
+        const WeatherHour& w = hours[h];
+        if (!(w.dhi_W_m2 > 0)) return;
+        const double zenith = std::acos(std::clamp(w.sun_dir.z(), -1.0, 1.0));
+        const PerezSky sky =
+            make_perez_sky(perez_sky_condition(w.dhi_W_m2, w.dni_W_m2, zenith, w.day_of_year), w.sun_dir, w.dhi_W_m2);
+        double e = 0;
+        for (std::size_t j = 0; j < nodes.size(); ++j) {
+          l[j] = std::max(0.0, nodes[j].a * sky.radiance(nodes[j].da) + nodes[j].b * sky.radiance(nodes[j].db));
+          e += open[j] * l[j];
+        }
+        const double k = e > 0 ? w.dhi_W_m2 / e : 0.0;
+        for (std::size_t j = 0; j < nodes.size(); ++j) out[h * nodes.size() + j] = static_cast<float>(k * l[j]);
+      });
   return out;
 }
 
@@ -144,54 +148,61 @@ ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint>
                          r.ground_lxh = ground_lxh * r.ground_view;
                        });
   // Hourly: the hours' skies at the daylight-coefficient nodes, once.
-  const std::vector<float> node_skies = hourly ? hourly_node_skies(hours, options.visibility) : std::vector<float>{};
-  run.counts =
-      for_each_visible_sky(scene, points, options.visibility, options.method, options.threads, both(n), true,
-                           [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
-                             PointClimate& r = run.points[i];
-                             r.svf = sky.factors.svf;
-                             r.sky_exposure = sky.factors.sky_exposure;
-                             r.method = sky.method;
-                             if (cumulative.sky_hours > 0) {
-                               thread_local std::vector<SkyFanTriangle> fan;
-                               double e[2];
-                               sky_channels(sky, tables, options.max_step_rad, fan, e);
-                               const double* k = calibration[sky.exact() ? 0 : 1];
-                               r.sky_Wh_m2 = e[0] * k[0];
-                               r.sky_lxh = e[1] * k[1];
-                             }
-                             const QueryPoint& q = points[i];
-                             for (const SunTerm& s : suns) {
-                               const double c = q.normal.dot(s.dir);
-                               if (c > 0 && worker.direction_visible(q, s.dir)) {
-                                 r.sun_hours += s.hours;
-                                 r.sun_Wh_m2 += s.Wh * c;
-                                 r.sun_lxh += s.lxh * c;
-                               }
-                             }
-                             if (hourly) {
-                               thread_local std::vector<float> dc, sky_h, sun_h, ground_h;
-                               dc.resize(kDaylightCoefficientNodes);
-                               daylight_coefficients(sky, options.visibility, dc);
-                               sky_h.assign(hours.size(), 0.0f);
-                               sun_h.assign(hours.size(), 0.0f);
-                               ground_h.assign(hours.size(), 0.0f);
-                               for (std::size_t h = 0; h < hours.size(); ++h) {
-                                 const WeatherHour& w = hours[h];
-                                 if (w.dhi_W_m2 > 0) {
-                                   const float* l = &node_skies[h * dc.size()];
-                                   double e = 0;
-                                   for (std::size_t j = 0; j < dc.size(); ++j) e += double(dc[j]) * double(l[j]);
-                                   sky_h[h] = static_cast<float>(e);
-                                 }
-                                 const double c = q.normal.dot(w.sun_dir);
-                                 if (w.sun_dir.z() > 0 && w.dni_W_m2 > 0 && c > 0 && worker.direction_visible(q, w.sun_dir))
-                                   sun_h[h] = static_cast<float>(w.dni_W_m2 * c);
-                                 ground_h[h] = static_cast<float>(w.albedo * w.ghi_W_m2 * r.ground_view);
-                               }
-                               hourly(i, sky_h, sun_h, ground_h);
-                             }
-                           });
+  const std::vector<float> node_skies =
+      hourly ? hourly_node_skies(hours, options.visibility, options.threads) : std::vector<float>{};
+  run.counts = for_each_visible_sky(
+      scene, points, options.visibility, options.method, options.threads, both(n), true,
+      [&](std::size_t i, const VisibleSky& sky, SkyVisibility& worker) {
+        PointClimate& r = run.points[i];
+        r.svf = sky.factors.svf;
+        r.sky_exposure = sky.factors.sky_exposure;
+        r.method = sky.method;
+        if (cumulative.sky_hours > 0) {
+          thread_local std::vector<SkyFanTriangle> fan;
+          double e[2];
+          sky_channels(sky, tables, options.max_step_rad, fan, e);
+          const double* k = calibration[sky.exact() ? 0 : 1];
+          r.sky_Wh_m2 = e[0] * k[0];
+          r.sky_lxh = e[1] * k[1];
+        }
+        const QueryPoint& q = points[i];
+        for (const SunTerm& s : suns) {
+          const double c = q.normal.dot(s.dir);
+          if (c > 0 && worker.direction_visible(q, s.dir)) {
+            r.sun_hours += s.hours;
+            r.sun_Wh_m2 += s.Wh * c;
+            r.sun_lxh += s.lxh * c;
+          }
+        }
+        if (hourly) {
+          thread_local std::vector<float> dc, sky_h, sun_h, ground_h, lx_h;
+          dc.resize(kDaylightCoefficientNodes);
+          daylight_coefficients(sky, options.visibility, dc);
+          sky_h.assign(hours.size(), 0.0f);
+          sun_h.assign(hours.size(), 0.0f);
+          ground_h.assign(hours.size(), 0.0f);
+          lx_h.assign(hours.size(), 0.0f);
+          for (std::size_t h = 0; h < hours.size(); ++h) {
+            const WeatherHour& w = hours[h];
+            double lx = w.albedo * w.ghi_lx * r.ground_view;
+            if (w.dhi_W_m2 > 0) {
+              const float* l = &node_skies[h * dc.size()];
+              double e = 0;
+              for (std::size_t j = 0; j < dc.size(); ++j) e += double(dc[j]) * double(l[j]);
+              sky_h[h] = static_cast<float>(e);
+              lx += e * (w.dhi_lx / w.dhi_W_m2);
+            }
+            const double c = q.normal.dot(w.sun_dir);
+            if (w.sun_dir.z() > 0 && c > 0 && (w.dni_W_m2 > 0 || w.dni_lx > 0) && worker.direction_visible(q, w.sun_dir)) {
+              sun_h[h] = static_cast<float>(w.dni_W_m2 * c);
+              lx += w.dni_lx * c;
+            }
+            ground_h[h] = static_cast<float>(w.albedo * w.ghi_W_m2 * r.ground_view);
+            lx_h[h] = static_cast<float>(lx);
+          }
+          hourly(i, sky_h, sun_h, ground_h, lx_h);
+        }
+      });
 
   if (progress) progress(2 * n, 2 * n);
   return run;

@@ -73,12 +73,16 @@ struct ClimateRun {
 
 // Hourly results of one point, handed over as soon as the point is done (from the workers,
 // concurrently for different points): per interval the mean irradiances in W·m⁻² of the sky, the
-// sun and the ground (each span has one value per interval of `hours`). The sky's hourly values
-// come from the point's daylight coefficients (daylight_coefficients.h) with each hour's sky
-// normalised so that an open horizontal face receives exactly its DHI; their sum over the period
-// agrees with sky_Wh_m2 (the time-integrated sky's quadrature) to ~10⁻³.
-using ClimateHourlySink =
-    std::function<void(std::size_t point, std::span<const float> sky, std::span<const float> sun, std::span<const float> ground)>;
+// sun and the ground, and the mean global illuminance in lx (each span has one value per interval
+// of `hours`). The sky's hourly values come from the point's daylight coefficients
+// (daylight_coefficients.h) with each hour's sky normalised so that an open horizontal face
+// receives exactly its DHI; their sum over the period agrees with sky_Wh_m2 (the time-integrated
+// sky's quadrature) to ~10⁻³. The illuminance is the same three terms in the photometric channel,
+// as the sums take it: the sky's radiance scaled by the hour's diffuse efficacy E_v,d/DHI (the sky
+// of one hour has one shape in both channels, cumulative_sky.h), the sun by E_v,direct·(n·s), the
+// ground by ρ·E_v,global·G.
+using ClimateHourlySink = std::function<void(std::size_t point, std::span<const float> sky, std::span<const float> sun,
+                                             std::span<const float> ground, std::span<const float> global_lx)>;
 
 // `progress(done, total)` from one thread over both passes (ground, then sky and sun).
 ClimateRun compute_point_climate(const Scene& scene, std::span<const QueryPoint> points, std::span<const WeatherHour> hours,

@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE irradiance_cli
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -478,6 +479,67 @@ BOOST_AUTO_TEST_CASE(hourly_netcdf, *skyband::test::needs_shared_data()) {
       BOOST_TEST(sum == expected, tt::tolerance(v == 0 ? 1e-2 : 1e-5));
     }
   }
+  // The illuminance: summed over the intervals, the CSV's global_klxh (the same terms in lx·h; the
+  // sky within 1 % as above). Hour by hour the open top face (no ground in view) receives the
+  // file's own illuminances: the sky normalised to the diffuse horizontal illuminance (field 20)
+  // and the sun's direct normal illuminance (field 19) times cos z, the cosine that the file's
+  // direct normal irradiance (field 15) gives with the face's sun_W_m2 of the same interval.
+  int v_lx = -1, v_sun = -1;
+  BOOST_TEST_REQUIRE(nc_inq_varid(nc, "global_lx", &v_lx) == NC_NOERR);
+  BOOST_TEST_REQUIRE(nc_inq_varid(nc, "sun_W_m2", &v_sun) == NC_NOERR);
+  char units[8] = {};
+  BOOST_TEST_REQUIRE(nc_get_att_text(nc, v_lx, "units", units) == NC_NOERR);
+  BOOST_TEST(std::string(units) == "lx");
+  std::vector<float> lx(points * times), sun(points * times);
+  nc_get_var_float(nc, v_lx, lx.data());
+  nc_get_var_float(nc, v_sun, sun.data());
+  for (std::size_t p = 0; p < points; ++p) {
+    double sum = 0;
+    for (std::size_t k = 0; k < times; ++k) sum += lx[p * times + k];
+    BOOST_TEST(sum == 1000 * num(rows[p], "global_klxh"), tt::tolerance(1e-2));
+  }
+  std::vector<std::array<double, 3>> file;  // June 1–7: DNI (W m-2), direct normal and diffuse horizontal illuminance (lx)
+  {
+    std::ifstream in(chicago);
+    std::string line;
+    for (int k = 0; k < 8; ++k) std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::vector<std::string> f;
+      std::stringstream ss(line);
+      for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+      if (f.size() > 19 && std::stoi(f[1]) == 6 && std::stoi(f[2]) <= 7)
+        file.push_back({std::stod(f[14]), std::stod(f[17]), std::stod(f[18])});
+    }
+  }
+  BOOST_TEST_REQUIRE(file.size() == times);
+  int lit = 0, with_sun = 0;
+  for (std::size_t k = 0; k < times; ++k) {
+    const double dni = file[k][0], dni_lx = file[k][1], dhi_lx = file[k][2];
+    if (!(dhi_lx > 0) || (dni == 0 && dni_lx > 0)) continue;
+    ++lit;
+    with_sun += sun[k] > 0;
+    const double expected = dhi_lx + (dni > 0 ? dni_lx * sun[k] / dni : 0.0);
+    BOOST_TEST(lx[k] == expected, tt::tolerance(1e-3));  // point 0: the top face
+  }
+  BOOST_TEST(lit >= 100);
+  BOOST_TEST(with_sun >= 50);
+  // One worker gives the same series, value for value (each point and each hour computed alone).
+  const auto one =
+      run_skyband("irradiance --threads 1 --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather " +
+                  q(chicago) + " --from 06-01 --to 06-07 --out " + q(d / "week1.csv") + " --hourly " + q(d / "week1.nc"));
+  BOOST_TEST_REQUIRE(one.exit_code == 0, one.err);
+  int nc1 = -1;
+  BOOST_TEST_REQUIRE(nc_open((d / "week1.nc").c_str(), NC_NOWRITE, &nc1) == NC_NOERR);
+  for (const char* v : {"sky_W_m2", "sun_W_m2", "ground_W_m2", "global_W_m2", "global_lx"}) {
+    int a = -1, b = -1;
+    BOOST_TEST_REQUIRE(nc_inq_varid(nc, v, &a) == NC_NOERR);
+    BOOST_TEST_REQUIRE(nc_inq_varid(nc1, v, &b) == NC_NOERR);
+    std::vector<float> x(points * times), y(points * times);
+    nc_get_var_float(nc, a, x.data());
+    nc_get_var_float(nc1, b, y.data());
+    BOOST_TEST((x == y), v);
+  }
+  nc_close(nc1);
   nc_close(nc);
 }
 
