@@ -3,6 +3,8 @@
 # Usage: scripts/build.sh [extra cmake args] — applied to an existing build folder too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache keys on paths relative to the repository (build folders and clones share objects).
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 BUILD_DIR=${SKYBAND_BUILD_DIR:-build}
 GEN=()
 command -v ninja >/dev/null && GEN=(-G Ninja)

@@ -4,6 +4,9 @@
 # benchmarks without the suites, then the sanitizer checks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache keys on paths relative to the repository: the build folders below (and clones at other
+# paths) share each other's objects wherever their flags agree.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 scripts/install-deps.sh
 # The sources' layout (.clang-format), before the build: a quick failure.
 scripts/check-format.sh
