@@ -496,7 +496,7 @@ bool ExactSky::project_patch(const HeightPatch& patch) {
 }
 
 void ExactSky::walk() {
-  const std::vector<OccluderNode>& nodes = set_.nodes;
+  const std::vector<BvhNode>& nodes = set_.nodes;
   if (nodes.empty()) return;
   // A bucket queue over the squared elevation bound in quarter-octaves, highest first; last in,
   // first out within one (as the exact horizon's walk, geometry/horizon/horizon_svf.cpp).
@@ -510,7 +510,7 @@ void ExactSky::walk() {
   for (auto& b : buckets_) b.clear();
   std::uint64_t filled[2] = {0, 0};
   const auto push = [&](std::uint32_t c) {
-    const OccluderNode& node = nodes[c];
+    const BvhNode& node = nodes[c];
     if (node.count == 0) {
       __builtin_prefetch(&nodes[node.first]);
       __builtin_prefetch(reinterpret_cast<const char*>(nodes.data() + node.first + 2) - 1);
@@ -562,7 +562,7 @@ void ExactSky::walk() {
       const std::uint32_t index = buckets_[b].back();
       buckets_[b].pop_back();
       if (buckets_[b].empty()) filled[b >> 6] &= ~(std::uint64_t(1) << (b & 63));
-      const OccluderNode& node = nodes[index];
+      const BvhNode& node = nodes[index];
       ++nodes_visited_;
       Bounds nb;
       if (!node_bounds(node.box, nb)) continue;

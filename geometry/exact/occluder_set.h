@@ -47,15 +47,9 @@ struct Occluder {
   double area2_m2 = 0;             // twice its area
 };
 
-struct OccluderNode {
-  Aabb box;                 // of the occluders' vertices
-  std::uint32_t first = 0;  // leaf: first occluder; inner: left child (right = left + 1)
-  std::uint32_t count = 0;  // leaf: number of occluders (> 0); inner: 0
-};
-
 struct OccluderSet {
   std::vector<Occluder> occluders;       // in the order of the leaves of `nodes`
-  std::vector<OccluderNode> nodes;       // node 0 the root
+  std::vector<BvhNode> nodes;            // node 0 the root
   std::size_t degenerate_triangles = 0;  // dropped: collinear or repeated vertices (no area)
   std::size_t merged_quads = 0;          // pairs of triangles merged into one quad
   std::size_t merged_regions = 0;        // regions of ≥ 3 coplanar triangles merged into a convex polygon

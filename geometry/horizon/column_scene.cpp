@@ -60,52 +60,18 @@ void build_edge_bvh(ColumnScene& out, std::vector<Candidate>& edges, const std::
   edges.swap(sorted);
 }
 
-// Median-split BVH over triangles (their boxes' centres, longest axis; leaves of ≤ 4);
-// `triangles` is reordered into leaf order. Deterministic.
-void build_triangle_bvh(const TriangleSoup& soup, std::vector<std::uint32_t>& triangles, std::vector<EdgeBvhNode>& nodes) {
-  nodes.clear();
-  if (triangles.empty()) return;
-  const auto box_of = [&](std::uint32_t t) {
-    Aabb b;
-    for (std::uint32_t v : soup.triangles[t]) b.extend(soup.vertices[v]);
-    return b;
-  };
-  struct Task {
-    std::uint32_t node, first, count;
-  };
-  nodes.push_back({});
-  std::vector<Task> stack{{0, 0, std::uint32_t(triangles.size())}};
-  while (!stack.empty()) {
-    const Task task = stack.back();
-    stack.pop_back();
-    Aabb box, centres;
-    for (std::uint32_t i = task.first; i < task.first + task.count; ++i) {
-      const Aabb b = box_of(triangles[i]);
-      box.extend(b);
-      centres.extend(b.centre());
-    }
-    nodes[task.node].box = box;
-    if (task.count <= 4) {
-      nodes[task.node].first = task.first;
-      nodes[task.node].count = task.count;
-      continue;
-    }
-    const Vec3 e = centres.hi - centres.lo;
-    const int axis = e.x() >= e.y() ? (e.x() >= e.z() ? 0 : 2) : (e.y() >= e.z() ? 1 : 2);
-    const std::uint32_t half = task.count / 2;
-    auto begin = triangles.begin() + task.first;
-    std::nth_element(begin, begin + half, begin + task.count, [&](std::uint32_t x, std::uint32_t y) {
-      const double cx = box_of(x).centre()[axis], cy = box_of(y).centre()[axis];
-      return cx != cy ? cx < cy : x < y;
-    });
-    const std::uint32_t left = std::uint32_t(nodes.size());
-    nodes.push_back({});
-    nodes.push_back({});
-    nodes[task.node].first = left;
-    nodes[task.node].count = 0;
-    stack.push_back({left + 1, task.first + half, task.count - half});
-    stack.push_back({left, task.first, half});
-  }
+// The other components' triangles in a median-split BVH (leaves of ≤ 4 triangles, one group:
+// build_grouped_bvh without buildings); `triangles` is reordered into leaf order.
+void build_triangle_bvh(const TriangleSoup& soup, std::vector<std::uint32_t>& triangles, std::vector<BvhNode>& nodes) {
+  std::vector<Aabb> boxes(triangles.size());
+  for (std::size_t k = 0; k < triangles.size(); ++k)
+    for (std::uint32_t v : soup.triangles[triangles[k]]) boxes[k].extend(soup.vertices[v]);
+  const std::vector<std::uint32_t> one_group(triangles.size(), 0);
+  const std::vector<std::uint32_t> order =
+      build_grouped_bvh(boxes, one_group, 4, 4, nodes, [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
+  std::vector<std::uint32_t> sorted(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = triangles[order[k]];
+  triangles.swap(sorted);
 }
 
 }  // namespace

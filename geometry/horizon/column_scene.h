@@ -51,12 +51,6 @@ struct alignas(64) SilhouetteEdge {
 };
 static_assert(sizeof(SilhouetteEdge) == 64);
 
-struct EdgeBvhNode {
-  Aabb box;                 // of the edges' ends
-  std::uint32_t first = 0;  // leaf: first edge; inner: left child (right = left + 1)
-  std::uint32_t count = 0;  // leaf: number of edges (> 0); inner: 0
-};
-
 struct ColumnScene {
   std::size_t column_solids = 0;
   std::size_t other_components = 0;                                      // open, non-manifold, overhanging, ... components
@@ -70,7 +64,7 @@ struct ColumnScene {
   // the solids' upper edges, and the method declines it), in the order of `edge_nodes`' leaves.
   std::vector<SilhouetteEdge> edges;
   std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
-  std::vector<EdgeBvhNode> edge_nodes;                   // node 0 the root; children of an inner node at first, first + 1
+  std::vector<BvhNode> edge_nodes;                       // node 0 the root; children of an inner node at first, first + 1
   // Candidates continued by another collinear candidate at an end (faces split along the edge: a
   // wall split into a grid of cells has 11 candidates along its top where one would do).
   std::size_t split_edges = 0;
@@ -79,7 +73,7 @@ struct ColumnScene {
   // the method requires each to be at or below the point's horizontal plane or wholly hidden
   // below the column solids' horizon (checked per point).
   std::vector<std::uint32_t> other_triangles;  // in the order of `other_nodes`' leaves
-  std::vector<EdgeBvhNode> other_nodes;        // leaves index other_triangles
+  std::vector<BvhNode> other_nodes;            // leaves index other_triangles
 
   // Above this height (metres) no other component rises: there the method never declines for
   // them (it may still decline inside or under a column solid, or below a floating one).

@@ -158,10 +158,10 @@ struct HorizonSvf::Impl {
   // Without it, loads missing the cache take about a fifth of the time on the 1M-triangle city;
   // prefetched 64-byte edges run ~20 % more points/s there than unprefetched 112-byte ones.
   template <class LeafItem>
-  bool walk(const std::vector<EdgeBvhNode>& nodes, bool ordered, LeafItem&& leaf_item) {
+  bool walk(const std::vector<BvhNode>& nodes, bool ordered, LeafItem&& leaf_item) {
     if (nodes.empty()) return true;
     const auto visit = [&](std::uint32_t index, auto&& push) {
-      const EdgeBvhNode& node = nodes[index];
+      const BvhNode& node = nodes[index];
       if (node_hidden(node.box)) return true;
       if (node.count > 0) {
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
@@ -197,7 +197,7 @@ struct HorizonSvf::Impl {
     for (int k = 0; k < 128; ++k) buckets[k].clear();
     std::uint64_t filled[2] = {0, 0};
     const auto push = [&](std::uint32_t c) {
-      const EdgeBvhNode& node = nodes[c];
+      const BvhNode& node = nodes[c];
       if (node.count == 0) {
         __builtin_prefetch(&nodes[node.first]);
         __builtin_prefetch(reinterpret_cast<const char*>(nodes.data() + node.first + 2) - 1);  // the pair's last byte

@@ -3,8 +3,11 @@
 // whole groups (median split of their boxes' centres along the longest axis), then inside a group
 // over its items the same way, so that a leaf's box is (part of) one building's and a hidden
 // building is skipped whole. Deterministic (ties broken by index), O(n log n). The exact horizon
-// (its silhouette edges, geometry/horizon/column_scene.h) and the exact union (its occluders,
-// geometry/exact/occluder_set.h) use it.
+// (its silhouette edges and, as one group, the other components' triangles,
+// geometry/horizon/column_scene.h) and the exact union (its occluders, geometry/exact/occluder_set.h)
+// use it: their walks are best first by elevation bound, where a building kept whole culls best.
+// The scene's own BVH (geometry/mesh/scene.cpp) is built by the surface-area heuristic instead,
+// the cost model of its ray and sample-plane traversals.
 #include <algorithm>
 #include <cstdint>
 #include <numeric>

@@ -30,11 +30,13 @@ struct Aabb {
   bool empty() const { return lo.x() > hi.x(); }
 };
 
-// BVH node: leaves hold [first, first + count) of Scene::bvh_triangle_order().
+// The node of every BVH here (the scene's triangles, the exact horizon's silhouette edges, the
+// exact union's occluders): node 0 the root; a leaf holds items [first, first + count) in its
+// hierarchy's leaf order (Scene::bvh_triangle_order(), ColumnScene::edges, OccluderSet::occluders).
 struct BvhNode {
-  Aabb box;
-  std::uint32_t first = 0;  // leaf: first triangle slot; inner: index of the left child
-  std::uint32_t count = 0;  // leaf: number of triangles (> 0); inner: 0 (right child = left + 1)
+  Aabb box;                 // of the items' vertices
+  std::uint32_t first = 0;  // leaf: first item slot; inner: index of the left child (right = left + 1)
+  std::uint32_t count = 0;  // leaf: number of items (> 0); inner: 0
 };
 
 struct Ray {
