@@ -1,6 +1,8 @@
 // Options and progress shared by the per-point jobs (point_job_args.h).
 #include "cli/point_job_args.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -111,16 +113,29 @@ std::string method_summary(std::size_t by_horizon, std::size_t by_exact, std::si
   return s.empty() ? "no points" : s;
 }
 
+Progress::Progress(std::string label, bool enabled, std::string unit)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      enabled_(enabled),
+      terminal_(isatty(fileno(stderr)) == 1),
+      start_(std::chrono::steady_clock::now()) {}
+
 void Progress::operator()(std::size_t done, std::size_t total) {
   if (!enabled_ || finished_) return;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (done < total && elapsed - last_ < 0.5) return;
-  if (elapsed < 1.0 && done < total) return;  // short runs stay quiet
+  // On a terminal the line is redrawn twice a second; in a log (stderr a file or a pipe) a line
+  // is added every 10 s, so the log stays readable, and runs under 10 s add none.
+  const double every_s = terminal_ ? 0.5 : 10.0, quiet_below_s = terminal_ ? 1.0 : 10.0;
+  if (done < total && elapsed - last_ < every_s) return;
+  if (elapsed < quiet_below_s) {
+    if (done == total) finished_ = true;
+    return;
+  }
   last_ = elapsed;
-  std::fprintf(stderr, "\r%s: %zu / %zu %s (%.0f%%), %.1f s", label_.c_str(), done, total, unit_.c_str(),
-               100.0 * double(done) / double(total ? total : 1), elapsed);
+  std::fprintf(stderr, "%s%s: %zu / %zu %s (%.0f%%), %.1f s%s", terminal_ ? "\r" : "", label_.c_str(), done, total, unit_.c_str(),
+               100.0 * double(done) / double(total ? total : 1), elapsed, terminal_ ? "" : "\n");
   if (done == total) {
-    std::fprintf(stderr, "\n");
+    if (terminal_) std::fprintf(stderr, "\n");
     finished_ = true;
   }
 }

@@ -70,18 +70,19 @@ TriangleSoup load_meshes(const std::vector<std::string>& files, const std::strin
 // buildings, 200 exact by the union of the occluders' projections, 0 by the band method".
 std::string method_summary(std::size_t by_horizon, std::size_t by_exact, std::size_t by_bands);
 
-// "\r<label>: done / total <unit> (p%), t s" on stderr at most twice a second, silent for runs
-// under a second; the final line once.
+// "<label>: done / total <unit> (p%), t s" on stderr: on a terminal one line redrawn at most
+// twice a second (silent for runs under a second), in a log a line every 10 s (silent for runs
+// under 10 s); the final line once.
 class Progress {
  public:
   // `unit`: what is counted ("points", "moments").
-  Progress(std::string label, bool enabled, std::string unit = "points")
-      : label_(std::move(label)), unit_(std::move(unit)), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  Progress(std::string label, bool enabled, std::string unit = "points");
   void operator()(std::size_t done, std::size_t total);
 
  private:
   std::string label_, unit_;
   bool enabled_;
+  bool terminal_;  // stderr is a terminal
   std::chrono::steady_clock::time_point start_;
   double last_ = 0;
   bool finished_ = false;
