@@ -225,12 +225,13 @@ std::string_view raw_value(od::value v) {
   return trimmed(token.data(), token.data() + token.size());
 }
 
-// A validated value's text (inside a padded text) quoted in a message, as value_text would.
-std::string raw_value_text(std::string_view text, std::string_view raw) {
+// A validated value's text (inside a padded text) quoted in a message, as value_text would;
+// with an integer beyond 64 bits (which the DOM does not take) or beyond 4 KB, as written.
+std::string raw_value_text(std::string_view raw) {
   if (raw.size() <= 4096) {
     dom::parser parser;
     Elem e;
-    if (parse_dom(parser, raw, e) == simdjson::SUCCESS) return value_text(e);
+    if (parser.parse(raw.data(), raw.size(), false).get(e) == simdjson::SUCCESS) return value_text(e);
   }
   std::string s = minified(raw.substr(0, 4096));
   if (s.size() > 60) s = s.substr(0, 57) + "...";
@@ -1044,14 +1045,14 @@ std::string vertex_text(const Chunk& chunk, std::string_view vertices, std::size
     od::value p;
     if (std::move(element).get(p)) return "?";
     if (i++ != v) continue;
-    if (k < 0) return raw_value_text(chunk.text, raw_value(p));
+    if (k < 0) return raw_value_text(raw_value(p));
     od::array coordinates;
     if (p.get_array().get(coordinates)) return "?";
     int j = 0;
     for (auto c : coordinates) {
       od::value x;
       if (std::move(c).get(x)) return "?";
-      if (j++ == k) return raw_value_text(chunk.text, raw_value(x));
+      if (j++ == k) return raw_value_text(raw_value(x));
     }
     return "?";
   }
@@ -1062,7 +1063,7 @@ std::string vertex_text(const Chunk& chunk, std::string_view vertices, std::size
 std::vector<Vec3> read_vertices(Chunk& chunk, const Transform& t, const Where& where) {
   const auto text = chunk.member("vertices");
   if (!text) fail(where, "/vertices", "missing");
-  if (!chunk.vertices_is_array) fail(where, "/vertices", raw_value_text(chunk.text, *text) + " is not an array");
+  if (!chunk.vertices_is_array) fail(where, "/vertices", raw_value_text(*text) + " is not an array");
   RawVertices& raw = chunk.vertices;
   constexpr long long kExactInDouble = 1LL << 53;  // |i| ≤ 2⁵³ converts to double exactly
   for (std::size_t v = 0; v < raw.values.size(); ++v) {
@@ -1167,7 +1168,7 @@ class ModelBuilder {
 
     const auto text = chunk.member("CityObjects");
     if (!text) fail(where, "/CityObjects", "missing");
-    if (!chunk.city_objects_is_object) fail(where, "/CityObjects", raw_value_text(chunk.text, *text) + " is not an object");
+    if (!chunk.city_objects_is_object) fail(where, "/CityObjects", raw_value_text(*text) + " is not an object");
 
     // The objects by id; of equal ids the last one (a JSON object keeps one member per name).
     std::vector<const ObjectText*> objects;
