@@ -5,9 +5,29 @@
 // (1.0.3, 1.1.3, 2.0.1) and https://www.cityjson.org/cityjsonseq/.
 //
 // Reading:
-//  - A single CityJSON file is parsed whole into an nlohmann::json DOM (memory ≈ 10× the file;
-//    fine for city districts, a streaming SAX reader would be the next step for whole cities).
-//    CityJSONSeq is read line by line: memory holds one feature at a time (plus the soup).
+//  - A single CityJSON file is read into memory once (its bytes plus simdjson's 64 bytes of
+//    padding) and parsed with simdjson (https://simdjson.org). One forward pass of its on-demand
+//    API checks the whole text as JSON (every number, string and bracket) and on the way reads
+//    "vertices" (25 bytes per vertex: each coordinate's bits and kind) and splits "CityObjects"
+//    into each object's text, a view into the file's bytes. The on-demand index of the text (4
+//    bytes per structural character, about 1.3× the file) is freed after that pass. CityJSON's
+//    members come in any order ("CityObjects" often before "vertices" and "transform"), which a
+//    forward-only pass cannot resolve, so that pass only locates them: the small members (type,
+//    version, metadata, transform, geometry-templates) are parsed afterwards from their own
+//    text, and each CityObject is parsed on its own into simdjson's DOM when it is read, one at
+//    a time, in the order of the ids (the objects are read in that order, whatever the file's).
+//    simdjson's DOM for the whole file would hold a tape of 2–3× the file besides the text and
+//    the index; this way the peak is about 2.5–3× the file plus the soup: 185 MB for a 68 MB
+//    3D BAG-like tile whose soup is 18 MB, 5.2 MB for the 1.46 MB Delft tile (1.2 MB soup;
+//    bench_city_model_load, docs/performance.md). A single very large CityObject (a terrain TIN
+//    as one object) adds its own DOM, a few times its size, while it is read.
+//    CityJSONSeq is read line by line, each line the same way: memory holds one feature at a
+//    time (plus the soup).
+//  - Not JSON (InputError "not JSON (what at line L, column C)", "at column C" on a CityJSONSeq
+//    line): a syntax error, a number beyond the range of a double (1e999), invalid UTF-8, an
+//    unescaped control character in a string, nesting deeper than 1024 levels. Such errors come
+//    before any other. An integer beyond 64 bits is a number like any other (the nearest double),
+//    as JSON defines it. Of members with equal names the last one counts.
 //  - Vertices: with a `transform` (required from 1.1 on, optional in 1.0) every vertex
 //    coordinate must be a JSON integer i and the coordinate is
 //        x = i · scale + translate,
@@ -20,7 +40,7 @@
 //    sum, so the error is ≤ ½ ulp(i·ŝ) + |i|·½ ulp(scale) + ½ ulp(translate) + ½ ulp(x)
 //    < 2.5 ulp(max(|i·scale|, |translate|, |x|)) (the scale term is < 1 ulp(i·scale)):
 //    ≈ 4·10⁻¹¹ m at RD coordinates of 10⁵ m, relative to the terms, not to x, when they cancel. Without a transform
-//    (CityJSON 1.0) vertices are JSON numbers taken as parsed (nlohmann parses decimals correctly rounded).
+//    (CityJSON 1.0) vertices are JSON numbers taken as parsed (simdjson parses decimals correctly rounded).
 //  - Only vertices that a read surface uses enter the soup (per file, or per feature in
 //    CityJSONSeq), in order of first use; coordinates are never shifted.
 //  - Geometry types: MultiSurface, CompositeSurface, Solid (every shell, inner shells too),

@@ -18,6 +18,7 @@ PACKAGES=(
   libcli11-dev                            # command-line parsing
   nlohmann-json3-dev                      # --json output, reports
   libtomlplusplus-dev                     # scene files
+  libsimdjson-dev                         # CityJSON / CityJSONSeq input (on-demand, correctly rounded)
   libhowardhinnant-date-dev tzdata        # named time zones (IANA tz database) for moments
   libnetcdf-dev                           # hourly results (NetCDF-4, CF conventions)
   libcitygml-dev libxerces-c-dev          # CityGML 1.0/2.0 input (libcitygml parses with Xerces-C)

@@ -731,6 +731,80 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(members_in_any_order_duplicates_and_json_edge_cases) {
+  // The same model with its members in other orders (CityObjects before transform and vertices,
+  // as cjio writes them) gives the same soup, vertex for vertex.
+  const std::string geometry = R"({"type":"Solid","lod":"1","boundaries":[)" + kCubeShell + "]}";
+  const std::string canonical = model(geometry, kCubeVertices);
+  const json j = json::parse(canonical);
+  json reordered_members = json::array();
+  for (const char* key : {"vertices", "CityObjects", "metadata", "transform", "version", "type"})
+    reordered_members.push_back(json::array({key, j.at(key)}));
+  std::string reordered = "{";
+  for (const json& m : reordered_members) {
+    if (reordered.size() > 1) reordered += ',';
+    reordered += m[0].dump();
+    reordered += ':';
+    reordered += m[1].dump();
+  }
+  reordered += '}';
+  const TriangleSoup a = read_cityjson(write_file("canonical.city.json", canonical));
+  const TriangleSoup b = read_cityjson(write_file("reordered.city.json", reordered));
+  BOOST_TEST(b.triangle_count() == 12u);
+  BOOST_TEST(sorted_vertices(a) == sorted_vertices(b));
+  BOOST_TEST(a.triangles == b.triangles);
+
+  // Of members with equal names the last counts (JSON objects keep one value per name).
+  std::string twice = canonical;
+  twice.insert(twice.find(R"("vertices":)"), R"("vertices":"ignored",)");
+  BOOST_TEST(read_cityjson(write_file("twice.city.json", twice)).triangle_count() == 12u);
+
+  // An integer beyond 64 bits is a JSON number like any other: fine in an attribute, too big
+  // for a transformed vertex.
+  std::string big = canonical;
+  big.insert(big.find(R"("geometry":)"), R"("attributes":{"n":123456789012345678901234567890},)");
+  BOOST_TEST(read_cityjson(write_file("big_attribute.city.json", big)).triangle_count() == 12u);
+  std::string big_vertex = canonical;
+  big_vertex.replace(big_vertex.find("[0,1000,1000]]"), 14, "[0,1000,123456789012345678901234567890]]");
+  const std::string e1 = error_of(write_file("big_vertex.city.json", big_vertex));
+  BOOST_TEST(e1.find("/vertices/7/2: integer coordinate 123456789012345678901234567890 exceeds 2^53") != std::string::npos, e1);
+
+  // A missing quote is reported where the grammar breaks, not where simdjson's first pass notices
+  // an odd number of quotes (the end of the text).
+  std::string unquoted = canonical;
+  unquoted.erase(unquoted.find(R"("version")"), 1);
+  const std::size_t cut = unquoted.find(R"("metadata")") + 1;
+  std::string quote = unquoted.substr(0, cut);
+  quote += '\n';  // inside a string once the quotes are off by one
+  quote += unquoted.substr(cut);
+  const std::string e2 = error_of(write_file("quote.city.json", quote));
+  BOOST_TEST(e2.find("not JSON (") != std::string::npos, e2);
+  BOOST_TEST(e2.find("line 1, column") != std::string::npos, e2);
+
+  // Nesting beyond 1024 levels, content after the value, a value not closed: not JSON, one line.
+  const std::string deep = R"({"type":"CityJSON","version":"2.0","x":)" + std::string(1100, '[') + std::string(1100, ']') +
+                           R"(,"CityObjects":{},"vertices":[]})";
+  for (const auto& [name, text, part] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"deep.city.json", deep, "nested deeper than 1024 levels"},
+           {"after.city.json", canonical + " x", "unexpected 'x' after the JSON value at line 1"},
+           {"open.city.json", canonical.substr(0, canonical.size() - 1), "unexpected end of input"},
+           {"ctrl.city.json",
+            R"({"type":"CityJSON","version":"2.)"
+            "\x01"
+            R"("})",
+            "unescaped control character in a string"},
+           {"utf8.city.json",
+            R"({"type":"CityJSON","version":"2.)"
+            "\xC3\x28"
+            R"("})",
+            "invalid UTF-8 at line 1"}}) {
+    const std::string e = error_of(write_file(name, text));
+    BOOST_TEST(e.find("not JSON (") != std::string::npos, name << ": " << e);
+    BOOST_TEST(e.find(part) != std::string::npos, name << ": " << e);
+    BOOST_TEST(e.find('\n') == std::string::npos, name);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(crs_forms_are_kept_and_epsg_codes_parsed) {
   const std::string geometry = R"({"type":"MultiSurface","lod":"2","boundaries":[[[0,1,2]]]})";
   for (const std::string crs : {"urn:ogc:def:crs:EPSG::7415", "https://www.opengis.net/def/crs/EPSG/0/7415", "EPSG:28992"}) {
