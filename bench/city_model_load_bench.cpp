@@ -17,8 +17,6 @@
 //       footprint with one BuildingPart child carrying LoD 1.2, 1.3 and 2.2 Solids with semantic
 //       surfaces, integer vertices with a transform; ~3 KB per building) and exits. 20,000
 //       buildings give ~60 MB.
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -34,20 +32,11 @@
 #include "geometry/core/input_error.h"
 #include "io/cityjson_reader.h"
 #include "io/mesh_reader.h"
+#include "support/child_process.h"
 
 using namespace skyband;
 
 namespace {
-
-// A field of /proc/self/status in kB ("VmRSS", "VmHWM"); -1 if absent.
-long status_kb(const char* field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::string key = std::string(field) + ":";
-  while (std::getline(in, line))
-    if (line.compare(0, key.size(), key) == 0) return std::stol(line.substr(key.size()));
-  return -1;
-}
 
 double soup_mb(const TriangleSoup& s) {
   return double(s.vertices.size() * sizeof(Vec3) + s.triangles.size() * sizeof(s.triangles[0]) +
@@ -62,30 +51,18 @@ struct LoadMemory {
 
 // Runs load() once in a child process; its peak RSS over the RSS it started the load with.
 template <class Load>
-LoadMemory in_child(Load&& load) {
-  int fd[2];
-  if (pipe(fd) != 0) return {};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
+LoadMemory load_memory(Load&& load) {
+  return bench::in_child([&] {
     LoadMemory m;
-    const long before = status_kb("VmRSS");
+    const long before = bench::status_kb("VmRSS");
     try {
       const TriangleSoup soup = load();
       m.soup_mb = soup_mb(soup);
-      m.peak_mb = double(status_kb("VmHWM") - before) * 1024.0 / 1e6;
+      m.peak_mb = double(bench::status_kb("VmHWM") - before) * 1024.0 / 1e6;
     } catch (const std::exception&) {
     }
-    (void)!write(fd[1], &m, sizeof m);
-    _exit(0);
-  }
-  close(fd[1]);
-  LoadMemory m;
-  if (read(fd[0], &m, sizeof m) != sizeof m) m = {};
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return m;
+    return m;
+  });
 }
 
 // ---- The synthetic model -------------------------------------------------------------------
@@ -238,9 +215,9 @@ int main(int argc, char** argv) {
   for (const std::string& f : files) {
     const double mb = double(std::filesystem::file_size(f)) / 1e6;
     // Memory first, each load in a fresh child, before this process has loaded anything large.
-    const LoadMemory mesh_memory = in_child([&] { return read_mesh(f); });
+    const LoadMemory mesh_memory = load_memory([&] { return read_mesh(f); });
     LoadMemory reader_memory;
-    if (is_cityjson_path(f)) reader_memory = in_child([&] { return read_cityjson(f); });
+    if (is_cityjson_path(f)) reader_memory = load_memory([&] { return read_cityjson(f); });
     double best = 1e300;
     std::size_t triangles = 0;
     try {

@@ -11,8 +11,6 @@
 // compute_point_climate). Reported: peak RSS at --small and --large points and
 // (peak_large − peak_small) / (large − small), the bytes each further point costs.
 #include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -29,6 +27,7 @@
 #include "io/mesh_reader.h"
 #include "lighting/climate/climate_irradiation.h"
 #include "lighting/climate/weather_hours.h"
+#include "support/child_process.h"
 
 using namespace skyband;
 
@@ -42,11 +41,7 @@ struct ChildResult {
 // Runs job(n) in a child process; returns its peak RSS and wall time.
 template <class Job>
 ChildResult in_child(Job&& job, std::size_t n) {
-  int fd[2];
-  if (pipe(fd) != 0) return {};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
+  return bench::in_child([&] {
     const auto t0 = std::chrono::steady_clock::now();
     ChildResult r;
     r.points = job(n);
@@ -54,16 +49,8 @@ ChildResult in_child(Job&& job, std::size_t n) {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     r.peak_mb = u.ru_maxrss / 1024.0;
-    (void)!write(fd[1], &r, sizeof r);
-    _exit(0);
-  }
-  close(fd[1]);
-  ChildResult r;
-  if (read(fd[0], &r, sizeof r) != sizeof r) r = {};
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return r;
+    return r;
+  });
 }
 
 }  // namespace
