@@ -23,6 +23,7 @@ namespace {
 
 constexpr int kHeaderLines = 8;
 constexpr int kRecordFields = 35;
+constexpr int kOldRecordFields = 32;  // older files end after field 32 (present weather codes)
 
 // Names of the 35 record fields, 1-based (index 0 unused), as the data dictionary calls them.
 constexpr std::array<const char*, kRecordFields + 1> kFieldNames = {"",
@@ -231,7 +232,7 @@ class EpwParser {
                      ") = '" + excerpt(trim(value)) + "': " + why);
   }
 
-  WeatherLocation parse_location() const {
+  WeatherLocation parse_location() {
     const auto fields = split_fields(lines_[0]);
     if (!keyword_is(fields[0], "LOCATION"))
       throw InputError(name_ + ":1: the first line must be the LOCATION header of an EPW file; found '" + excerpt(lines_[0]) +
@@ -239,10 +240,13 @@ class EpwParser {
     // fields[0] is the keyword; LOCATION field k is fields[k].
     std::size_t count = fields.size();
     while (count > 10 && trim(fields[count - 1]).empty()) --count;  // trailing commas
-    if (count != 10)
+    if (count < 10)
       throw InputError(name_ + ":1: the LOCATION header has " + std::to_string(count - 1) +
                        " fields; 9 expected (city, state/province, country, source, WMO, latitude, longitude, "
                        "time zone, elevation)");
+    if (count > 10)  // some writers append a field (a climate zone): the nine named ones are read
+      location_extra_ = "the LOCATION header has " + std::to_string(count - 1) + " fields; the 9 named ones are read and '" +
+                        excerpt(trim(fields[10])) + "'" + (count > 11 ? " and what follows" : "") + " ignored";
     const auto number = [&](int k, const char* what, double lo, double hi, bool hi_open, const char* range) {
       const auto v = parse_double(fields[static_cast<std::size_t>(k)]);
       if (!v) header_fail(1, "LOCATION", k, what, fields[static_cast<std::size_t>(k)], "not a finite number");
@@ -320,10 +324,13 @@ class EpwParser {
   WeatherRecord parse_record(std::size_t line, std::string_view text) {
     if (trim(text).empty()) throw InputError(name_ + ":" + std::to_string(line) + ": empty line between the weather records");
     fields_ = split_fields(text);
-    if (fields_.size() != static_cast<std::size_t>(kRecordFields))
+    if (fields_.size() < static_cast<std::size_t>(kOldRecordFields) || fields_.size() > static_cast<std::size_t>(kRecordFields))
       throw InputError(name_ + ":" + std::to_string(line) + ": the record has " + std::to_string(fields_.size()) +
                        " fields; an EPW record has " + std::to_string(kRecordFields) +
-                       " (year, month, day, hour, minute, … liquid precipitation quantity)");
+                       " (year, month, day, hour, minute, … liquid precipitation quantity), or " +
+                       std::to_string(kOldRecordFields) + " in older files (without albedo and precipitation)");
+    if (fields_.size() < static_cast<std::size_t>(kAlbedo) && short_records_++ == 0)
+      first_short_record_ = "line " + std::to_string(line) + ": " + std::to_string(fields_.size()) + " fields";
     WeatherRecord r;
     r.line = line;
     r.interval_hours = 1;
@@ -348,10 +355,12 @@ class EpwParser {
     r.global_illuminance_lux = illuminance(line, kGlobalIlluminance);
     r.direct_illuminance_lux = illuminance(line, kDirectIlluminance);
     r.diffuse_illuminance_lux = illuminance(line, kDiffuseIlluminance);
-    const double albedo = number(line, kAlbedo);
+    const double albedo = fields_.size() >= static_cast<std::size_t>(kAlbedo) ? number(line, kAlbedo) : kMissingAlbedo;
     if (albedo < kMissingAlbedo) {
-      if (albedo >= 0 && albedo <= 1) {
+      if (albedo > 0 && albedo <= 1) {
         r.albedo = albedo;
+      } else if (albedo == 0) {
+        ++zero_albedo_;  // no ground reflects nothing: files write 0 where the albedo is unknown
       } else if (invalid_albedo_++ == 0) {
         first_invalid_albedo_ = "line " + std::to_string(line) + ": '" + excerpt(trim(fields_[kAlbedo - 1])) + "'";
       }
@@ -404,9 +413,18 @@ class EpwParser {
       w.push_back(name_ + ": diffuse horizontal radiation exceeds global horizontal by more than 5 % in " +
                   std::to_string(diffuse_excess_) + " of " + std::to_string(daylight_) + " daylight records (first on " +
                   first_diffuse_excess_ + "); global includes diffuse, so fields 14 and 16 may be swapped or wrong");
+    if (!location_extra_.empty()) w.push_back(name_ + ":1: " + location_extra_);
+    if (short_records_ > 0)
+      w.push_back(name_ + ": " + std::to_string(short_records_) + " record(s) without fields 33-35 (albedo, precipitation), " +
+                  "as in older EPW files (first on " + first_short_record_ + "); the ground albedo there is --albedo or " +
+                  "the default 0.2");
     if (invalid_albedo_ > 0)
       w.push_back(name_ + ": " + std::to_string(invalid_albedo_) +
                   " albedo value(s) (field 33) outside [0, 1] treated as missing (first on " + first_invalid_albedo_ + ")");
+    if (zero_albedo_ > 0)
+      w.push_back(name_ + ": " + std::to_string(zero_albedo_) + " albedo value(s) (field 33) of 0 treated as missing " +
+                  "(no ground reflects nothing; files write 0 where the albedo is unknown): the ground albedo there is " +
+                  "--albedo or the default 0.2");
     if (daylight_ == 0) w.push_back(name_ + ": no solar radiation in any record (fields 14 and 16 are all zero)");
   }
 
@@ -418,8 +436,8 @@ class EpwParser {
   Slot first_, previous_;
   std::size_t previous_line_ = 0;
   std::size_t daylight_ = 0;
-  std::size_t diffuse_excess_ = 0, invalid_albedo_ = 0, false_leap_days_ = 0;
-  std::string first_diffuse_excess_, first_invalid_albedo_, first_false_leap_day_;
+  std::size_t diffuse_excess_ = 0, invalid_albedo_ = 0, zero_albedo_ = 0, false_leap_days_ = 0, short_records_ = 0;
+  std::string first_diffuse_excess_, first_invalid_albedo_, first_false_leap_day_, first_short_record_, location_extra_;
 };
 
 }  // namespace

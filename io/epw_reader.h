@@ -4,12 +4,14 @@
 // Format: EnergyPlus "Auxiliary Programs", Weather Converter Program, "EnergyPlus Weather File
 // (EPW) Data Dictionary" (NREL/EnergyPlus, doc/auxiliary-programs/src/weather-converter-program/
 // energyplus-weather-file-epw-data-dictionary.tex). Eight header lines — LOCATION first, DATA
-// PERIODS eighth — then one record per hour of 35 comma-separated fields. Fields used here
+// PERIODS eighth — then one record per hour of 35 comma-separated fields (32 in files of older
+// converters, which end after the present weather codes: no albedo or precipitation; a warning). Fields used here
 // (1-based): 1–4 year, month, day, hour (hour h covers (h−1, h] local standard time); 5 minute;
 // 8 dew point; 14–16 global horizontal, direct normal and diffuse horizontal radiation (Wh/m²
 // over the hour); 17–19 the matching illuminances (lux); 33 albedo. LOCATION fields, counted
 // after the keyword: 1 city, 2 state/province/region, 3 country, 4 source, 5 WMO number,
-// 6 latitude (N+), 7 longitude (E+), 8 time zone (hours from UTC, E+), 9 elevation (m).
+// 6 latitude (N+), 7 longitude (E+), 8 time zone (hours from UTC, E+), 9 elevation (m); fields
+// after the ninth (some writers add a climate zone) are ignored with a warning.
 //
 // Accepted: LF, CR LF or lone CR line ends, a UTF-8 byte-order mark, empty lines after the last
 // record, 8760 or 8784 (leap year) hourly records or any other run of consecutive hours (a
@@ -26,6 +28,8 @@
 //   dew point                        missing ≥ 99.9     → std::nullopt
 //                                    outside (−70, 70) °C (the dictionary's range) → InputError
 //   albedo                           missing ≥ 999      → std::nullopt
+//                                    0 (no ground reflects nothing: IWEC and other files write
+//                                    0 where it is unknown) → std::nullopt and a warning
 //                                    outside [0, 1]     → std::nullopt and a warning
 //   latitude ±90°, longitude ±180°, time zone −12..+14 h (the dictionary says ±12; real zones
 //   reach UTC+14), elevation [−1000, 9999.9) m; month 1..12, day within the month (February 29

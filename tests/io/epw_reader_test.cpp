@@ -318,6 +318,7 @@ BOOST_AUTO_TEST_CASE(missing_codes_of_optional_fields_become_missing) {
   e.field(12, 33) = "999";  // albedo missing code
   e.field(13, 33) = "1.5";  // albedo outside [0, 1]: invalid, treated as missing with a warning
   e.field(14, 33) = "0.25";
+  e.field(15, 33) = "0.000";  // albedo 0: unknown (IWEC files write it in every record), missing with a warning
   e.field(14, 8) = "-12.5";
   const fs::path p = write(d, "missing.epw", e.text());
   const WeatherSeries s = read_epw(p);
@@ -329,9 +330,51 @@ BOOST_AUTO_TEST_CASE(missing_codes_of_optional_fields_become_missing) {
   BOOST_TEST(!s.records[13].albedo.has_value());
   BOOST_TEST(*s.records[14].albedo == 0.25);
   BOOST_TEST(*s.records[14].dew_point_C == -12.5);
+  BOOST_TEST(!s.records[15].albedo.has_value());
   BOOST_TEST(*s.records[0].global_illuminance_lux == 0.0);  // present zero, not missing
   bool warned = false;
   for (const auto& m : s.warnings) warned |= contains(m, p.string()) && contains(m, "albedo") && contains(m, "line 22");
+  BOOST_TEST(warned);
+  bool zero_warned = false;
+  for (const auto& m : s.warnings) zero_warned |= contains(m, p.string()) && contains(m, "1 albedo value(s) (field 33) of 0");
+  BOOST_TEST(zero_warned);
+}
+
+BOOST_AUTO_TEST_CASE(older_records_of_32_fields_are_read_without_albedo) {
+  // EPW files of older converters end each record after field 32 (present weather codes); the
+  // EnergyPlus data dictionary's fields 33-35 (albedo, precipitation) are then absent.
+  TempDir d;
+  EpwText e = two_days();
+  e.field(3, 14) = "120", e.field(3, 15) = "300", e.field(3, 16) = "80";
+  std::string text;
+  for (const auto& h : e.header) text += h + "\n";
+  for (const auto& r : e.records) {
+    for (std::size_t k = 0; k < 32; ++k) text += (k ? "," : "") + r[k];
+    text += "\n";
+  }
+  const fs::path p = write(d, "old32.epw", text);
+  const WeatherSeries s = read_epw(p);
+  BOOST_TEST(s.records.size() == e.records.size());
+  BOOST_TEST(s.records[3].ghi_Wh_m2 == 120.0);
+  BOOST_TEST(s.records[3].dni_Wh_m2 == 300.0);
+  BOOST_TEST(!s.records[3].albedo.has_value());
+  bool warned = false;
+  for (const auto& m : s.warnings)
+    warned |= contains(m, p.string()) && contains(m, "48 record(s) without fields 33-35") && contains(m, "line 9: 32 fields");
+  BOOST_TEST(warned);
+}
+
+BOOST_AUTO_TEST_CASE(a_location_line_with_an_extra_field_reads_the_nine_named_ones) {
+  // Some writers append a climate zone to LOCATION (e.g. "...,-8.0,30.0,Csb").
+  TempDir d;
+  EpwText e = two_days();
+  e.header[0] += ",Csb";
+  const fs::path p = write(d, "extra.epw", e.text());
+  const WeatherSeries s = read_epw(p);
+  BOOST_TEST(s.location.latitude_deg == 40.0);
+  BOOST_TEST(s.location.elevation_m == 1600.0);
+  bool warned = false;
+  for (const auto& m : s.warnings) warned |= contains(m, p.string() + ":1:") && contains(m, "'Csb' ignored");
   BOOST_TEST(warned);
 }
 
@@ -473,21 +516,21 @@ BOOST_AUTO_TEST_CASE(structural_errors_name_file_and_line) {
   none.records.clear();
   check("norecords.epw", none.text(), {":9:", "no weather records"});
 
-  // 34 and 36 fields.
-  std::string line34;
+  // 31 and 36 fields (32 to 35 are read: older files end after field 32).
+  std::string line31;
   {
     const Fields r = record(2019, 6, 1, 4);
-    for (std::size_t k = 0; k < 34; ++k) line34 += (k ? "," : "") + r[k];
+    for (std::size_t k = 0; k < 31; ++k) line31 += (k ? "," : "") + r[k];
   }
-  std::string text34 = full;
+  std::string text31 = full;
   const std::string line12 = [&] {
     std::string s;
     const Fields r = record(2019, 6, 1, 4);
     for (std::size_t k = 0; k < r.size(); ++k) s += (k ? "," : "") + r[k];
     return s;
   }();
-  text34.replace(text34.find(line12), line12.size(), line34);
-  check("fields34.epw", text34, {":12:", "has 34 fields", "35"});
+  text31.replace(text31.find(line12), line12.size(), line31);
+  check("fields31.epw", text31, {":12:", "has 31 fields", "35", "32 in older files"});
   std::string text36 = full;
   text36.replace(text36.find(line12), line12.size(), line12 + ",1");
   check("fields36.epw", text36, {":12:", "has 36 fields"});
