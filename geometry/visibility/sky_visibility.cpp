@@ -10,6 +10,7 @@
 #include "geometry/horizon/column_scene.h"
 #include "geometry/horizon/horizon_svf.h"
 #include "geometry/points/point_order.h"
+#include "geometry/visibility/plane_clearance.h"
 
 namespace skyband {
 
@@ -35,7 +36,12 @@ BandVisibility& SkyVisibility::bands() {
   return *bands_;
 }
 
-const VisibleSky& SkyVisibility::compute(const QueryPoint& q, bool region) {
+const VisibleSky& SkyVisibility::compute(const QueryPoint& given, bool region) {
+  // Within rounding of a plane seen edge-on, every method would build arcs whose side rounding
+  // decides: the point is moved clear first (geometry/visibility/plane_clearance.h).
+  given_ = given.position;
+  cleared_ = clear_of_planes(scene_, given, options_.surface_offset_m, stack_);
+  const QueryPoint& q = cleared_;
   sky_.normal = q.normal;
   sky_.point = q.position + options_.surface_offset_m * q.normal;
   sky_.bands = nullptr;
@@ -63,7 +69,8 @@ const VisibleSky& SkyVisibility::compute(const QueryPoint& q, bool region) {
   return sky_;
 }
 
-bool SkyVisibility::direction_visible(const QueryPoint& q, const Vec3& d) {
+bool SkyVisibility::direction_visible(const QueryPoint& given, const Vec3& d) {
+  const QueryPoint& q = given.position == given_ ? cleared_ : given;
   if (sky_.exact() && !sky_.pieces.empty()) {
     const int r = sky_.lookup(d);
     if (r >= 0) return r == 1;

@@ -14,10 +14,12 @@
 // The sun (or any direction) is tested by looking it up in the point's visible sky; only a
 // direction within rounding of the region's boundary, or a point computed by the band method,
 // goes to the exact shadow test on a sample plane (BandVisibility::direction_visible).
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "geometry/bands/band_visibility.h"
 #include "geometry/mesh/scene.h"
@@ -59,6 +61,9 @@ class SkyVisibility {
   VisibilityCache::PointResult band_result_;
   std::unique_ptr<PointVisibilityView> band_view_;
   VisibleSky sky_;
+  Vec3 given_{std::nan(""), 0, 0};  // the last point given to compute(), and that point moved clear of planes
+  QueryPoint cleared_;
+  std::vector<std::uint32_t> stack_;
   std::size_t exact_tests_ = 0;
 };
 
