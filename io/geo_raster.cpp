@@ -7,6 +7,12 @@
 #include <ogr_spatialref.h>
 
 #include <cmath>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <memory>
 #include <mutex>
 
@@ -83,6 +89,41 @@ std::string wkt_of(const OGRSpatialReference& srs) {
 
 }  // namespace
 
+constexpr double kMaxPlausibleHeight_m = 1e5;
+
+// GDAL's ASCII grid driver reads an unparsable value ("nan", "1.0abc") and a missing one (a
+// truncated file) as 0: the text is checked here first. Header lines start with a keyword.
+static void check_ascii_grid(const std::string& name, std::size_t columns, std::size_t rows) {
+  std::ifstream in(name, std::ios::binary);
+  std::string line;
+  std::size_t line_no = 0, count = 0;
+  bool header = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream tokens(line);
+    std::string t;
+    bool first = true;
+    while (tokens >> t) {
+      if (header && first && (std::isalpha(static_cast<unsigned char>(t[0])) != 0)) break;  // a header line
+      header = false, first = false;
+      char* end = nullptr;
+      const double v = std::strtod(t.c_str(), &end);
+      if (end != t.c_str() + t.size() || !std::isfinite(v))
+        throw InputError(name + ":" + std::to_string(line_no) + ": value '" + t.substr(0, 40) + "' is not a finite number");
+      ++count;
+    }
+  }
+  if (count != columns * rows)
+    throw InputError(name + ": " + std::to_string(count) + " values for ncols × nrows = " + std::to_string(columns) + " × " +
+                     std::to_string(rows) + " = " + std::to_string(columns * rows) + " pixels (a truncated or malformed grid)");
+}
+
+static std::string format_height(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
 GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pixels) {
   const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
   register_gdal();
@@ -100,6 +141,8 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
   if (r.columns > max_pixels / r.rows)
     throw InputError(name + ": " + std::to_string(r.columns) + " × " + std::to_string(r.rows) + " pixels, over the limit of " +
                      std::to_string(max_pixels) + " (crop or resample it)");
+  if (GDALDriver* driver = ds->GetDriver(); driver && std::string(driver->GetDescription()) == "AAIGrid")
+    check_ascii_grid(name, r.columns, r.rows);
   double gt[6];
   if (ds->GetGeoTransform(gt) != CE_None)
     throw InputError(name + ": the raster has no georeferencing (geotransform): pixel size and position unknown");
@@ -114,10 +157,22 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
     if (srs->IsGeographic())
       throw InputError(name + ": geographic CRS " + crs_label(*srs) +
                        " (degrees, not metres): reproject the raster first (gdalwarp -t_srs EPSG:...)");
+    if (srs->IsGeocentric())
+      throw InputError(name + ": geocentric CRS " + crs_label(*srs) +
+                       " (earth-centred x, y, z): reproject the raster to a projected CRS first (gdalwarp -t_srs EPSG:...)");
     r.crs_wkt = wkt_of(*srs);
     r.crs_name = crs_label(*srs);
   }
   GDALRasterBand* band = ds->GetRasterBand(1);
+  if (GDALDataTypeIsComplex(band->GetRasterDataType()))
+    throw InputError(name + ": band 1 holds complex numbers (" + GDALGetDataTypeName(band->GetRasterDataType()) +
+                     "), not heights");
+  // Stored values are heights after GDAL's scale and offset (height = value · scale + offset).
+  int has_scale = 0, has_offset = 0;
+  const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+  if ((has_scale && !(std::isfinite(scale) && scale != 0)) || (has_offset && !std::isfinite(offset)))
+    throw InputError(name + ": band 1 has scale " + std::to_string(scale) + " and offset " + std::to_string(offset) +
+                     ": heights cannot be recovered");
   int has_nodata = 0;
   const double nodata = band->GetNoDataValue(&has_nodata);
   if (has_nodata) r.nodata = nodata;
@@ -134,8 +189,18 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
       throw InputError(name + ": pixel (column " + std::to_string(i % r.columns) + ", row " + std::to_string(i / r.columns) +
                        ") is " + (std::isnan(v) ? "NaN" : "infinite") + " and not the nodata value" +
                        (has_nodata ? " (" + std::to_string(nodata) + ")" : std::string(" (the band has none)")));
+    } else {
+      if (has_scale) v *= scale;
+      if (has_offset) v += offset;
+      // No surface on earth lies 100 km above or below sea level: an undeclared nodata value
+      // (−9999 is plausible; −3.4e38, FLT_MAX are not).
+      if (!(std::abs(v) <= kMaxPlausibleHeight_m))
+        throw InputError(name + ": pixel (column " + std::to_string(i % r.columns) + ", row " + std::to_string(i / r.columns) +
+                         ") has height " + format_height(v) + " m, not a plausible height; declare the raster's nodata " +
+                         "value if it is one (gdal_edit.py -a_nodata VALUE)");
     }
   }
+  if (r.nodata_pixels == r.values.size()) throw InputError(name + ": every pixel is nodata: no height to map");
   return r;
 }
 

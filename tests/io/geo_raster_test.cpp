@@ -18,6 +18,7 @@
 
 using namespace skyband;
 namespace fs = std::filesystem;
+namespace tt = boost::test_tools;
 
 namespace {
 
@@ -94,6 +95,31 @@ BOOST_AUTO_TEST_CASE(ascii_grid_with_nodata_and_lower_left_origin) {
   BOOST_TEST(r.crs_name == "");
 }
 
+BOOST_AUTO_TEST_CASE(heights_are_values_times_the_bands_scale_plus_its_offset) {
+  // Heights stored in decimetres (GDAL scale 0.1, offset 2 m): read as metres.
+  GeoTiffOutput out;
+  out.columns = 2;
+  out.rows = 1;
+  const std::vector<float> raw{100.0f, 250.0f};
+  out.values = raw;
+  out.geotransform = {0, 1, 0, 0, 0, -1};
+  const fs::path tif = temp_dir() / "raw.tif";
+  write_geotiff(tif, out);
+  // A VRT over it declaring the scale and offset (as gdal_translate -a_scale -a_offset writes).
+  const fs::path p = write_text("scaled.vrt", R"(<VRTDataset rasterXSize="2" rasterYSize="1">
+  <GeoTransform>0, 1, 0, 0, 0, -1</GeoTransform>
+  <VRTRasterBand dataType="Float32" band="1">
+    <Offset>2</Offset>
+    <Scale>0.1</Scale>
+    <SimpleSource><SourceFilename relativeToVRT="1">raw.tif</SourceFilename><SourceBand>1</SourceBand></SimpleSource>
+  </VRTRasterBand>
+</VRTDataset>
+)");
+  const GeoRaster r = read_geo_raster(p);
+  BOOST_TEST(r.values[0] == 100.0f * 0.1 + 2.0, tt::tolerance(1e-12));
+  BOOST_TEST(r.values[1] == 250.0f * 0.1 + 2.0, tt::tolerance(1e-12));
+}
+
 BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
   const fs::path missing = temp_dir() / "missing.tif";
   BOOST_TEST(error_of([&] { read_geo_raster(missing); }).find("missing.tif: no such raster file") != std::string::npos);
@@ -126,6 +152,20 @@ BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
              std::string::npos);
   BOOST_TEST(error_of([&] { crs_wkt_of("EPSG:nonsense", "--crs"); }).find("unknown coordinate reference system") !=
              std::string::npos);
+
+  // ASCII grids: GDAL's driver reads an unparsable or missing value as 0, so the text is checked.
+  const std::string head = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n";
+  BOOST_TEST(error_of([&] { read_geo_raster(write_text("nan.asc", head + "1 2 3\n4 nan 6\n")); })
+                 .find("nan.asc:8: value 'nan' is not a finite number") != std::string::npos);
+  BOOST_TEST(error_of([&] { read_geo_raster(write_text("junk.asc", head + "1 2 3\n4 1.0abc 6\n")); })
+                 .find("junk.asc:8: value '1.0abc'") != std::string::npos);
+  BOOST_TEST(error_of([&] { read_geo_raster(write_text("short.asc", head + "1 2 3\n4 5\n")); })
+                 .find("short.asc: 5 values for ncols × nrows = 3 × 2 = 6 pixels") != std::string::npos);
+  // Every pixel nodata; an implausible height that is not the nodata value (FLT_MAX-like fill).
+  BOOST_TEST(error_of([&] { read_geo_raster(write_text("none.asc", head + "-9999 -9999 -9999\n-9999 -9999 -9999\n")); })
+                 .find("none.asc: every pixel is nodata") != std::string::npos);
+  BOOST_TEST(error_of([&] { read_geo_raster(write_text("fill.asc", head + "1 2 3\n4 -3.4e38 6\n")); })
+                 .find("fill.asc: pixel (column 1, row 1) has height -3.4e+38 m, not a plausible height") != std::string::npos);
 
   // Too many pixels for the limit.
   BOOST_TEST(error_of([&] { read_geo_raster(rotated, 3); }).find("over the limit") != std::string::npos);
