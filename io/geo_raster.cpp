@@ -6,15 +6,15 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
-#include <string>
 #include <memory>
 #include <mutex>
+#include <sstream>
+#include <string>
 
 #include "geometry/core/input_error.h"
 #include "io/atomic_file.h"

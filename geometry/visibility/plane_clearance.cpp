@@ -15,7 +15,9 @@ template <class F>
 void triangles_near_column(const Scene& scene, double x, double y, double r, std::vector<std::uint32_t>& stack, F&& f) {
   const std::vector<BvhNode>& nodes = scene.bvh_nodes();
   const std::vector<std::uint32_t>& order = scene.bvh_triangle_order();
-  const auto holds = [&](const Aabb& b) { return b.lo.x() - r <= x && x <= b.hi.x() + r && b.lo.y() - r <= y && y <= b.hi.y() + r; };
+  const auto holds = [&](const Aabb& b) {
+    return b.lo.x() - r <= x && x <= b.hi.x() + r && b.lo.y() - r <= y && y <= b.hi.y() + r;
+  };
   if (nodes.empty() || !holds(nodes[0].box)) return;
   stack.clear();
   stack.push_back(0);
@@ -57,7 +59,8 @@ QueryPoint clear_of_planes(const Scene& scene, const QueryPoint& q, double offse
       const Vec3 m = (b - a).cross(c - a);
       const double mn = m.norm();
       if (!(mn > 0)) return;
-      if (std::abs(m.dot(p - a)) <= delta * mn) push(-exact_orientation(a, b, c, p), m / mn);  // det[a − p, b − p, c − p] = −(p − a)·m
+      if (std::abs(m.dot(p - a)) <= delta * mn)
+        push(-exact_orientation(a, b, c, p), m / mn);  // det[a − p, b − p, c − p] = −(p − a)·m
       // The vertical plane of each edge, where the point's xy lies along the edge.
       const Vec3* v[3] = {&a, &b, &c};
       for (int e = 0; e < 3; ++e) {

@@ -155,17 +155,22 @@ BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
 
   // ASCII grids: GDAL's driver reads an unparsable or missing value as 0, so the text is checked.
   const std::string head = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n";
-  BOOST_TEST(error_of([&] { read_geo_raster(write_text("nan.asc", head + "1 2 3\n4 nan 6\n")); })
-                 .find("nan.asc:8: value 'nan' is not a finite number") != std::string::npos);
-  BOOST_TEST(error_of([&] { read_geo_raster(write_text("junk.asc", head + "1 2 3\n4 1.0abc 6\n")); })
-                 .find("junk.asc:8: value '1.0abc'") != std::string::npos);
-  BOOST_TEST(error_of([&] { read_geo_raster(write_text("short.asc", head + "1 2 3\n4 5\n")); })
-                 .find("short.asc: 5 values for ncols × nrows = 3 × 2 = 6 pixels") != std::string::npos);
+  BOOST_TEST(error_of([&] {
+               read_geo_raster(write_text("nan.asc", head + "1 2 3\n4 nan 6\n"));
+             }).find("nan.asc:8: value 'nan' is not a finite number") != std::string::npos);
+  BOOST_TEST(error_of([&] {
+               read_geo_raster(write_text("junk.asc", head + "1 2 3\n4 1.0abc 6\n"));
+             }).find("junk.asc:8: value '1.0abc'") != std::string::npos);
+  BOOST_TEST(error_of([&] {
+               read_geo_raster(write_text("short.asc", head + "1 2 3\n4 5\n"));
+             }).find("short.asc: 5 values for ncols × nrows = 3 × 2 = 6 pixels") != std::string::npos);
   // Every pixel nodata; an implausible height that is not the nodata value (FLT_MAX-like fill).
-  BOOST_TEST(error_of([&] { read_geo_raster(write_text("none.asc", head + "-9999 -9999 -9999\n-9999 -9999 -9999\n")); })
-                 .find("none.asc: every pixel is nodata") != std::string::npos);
-  BOOST_TEST(error_of([&] { read_geo_raster(write_text("fill.asc", head + "1 2 3\n4 -3.4e38 6\n")); })
-                 .find("fill.asc: pixel (column 1, row 1) has height -3.4e+38 m, not a plausible height") != std::string::npos);
+  BOOST_TEST(error_of([&] {
+               read_geo_raster(write_text("none.asc", head + "-9999 -9999 -9999\n-9999 -9999 -9999\n"));
+             }).find("none.asc: every pixel is nodata") != std::string::npos);
+  BOOST_TEST(error_of([&] {
+               read_geo_raster(write_text("fill.asc", head + "1 2 3\n4 -3.4e38 6\n"));
+             }).find("fill.asc: pixel (column 1, row 1) has height -3.4e+38 m, not a plausible height") != std::string::npos);
 
   // Too many pixels for the limit.
   BOOST_TEST(error_of([&] { read_geo_raster(rotated, 3); }).find("over the limit") != std::string::npos);
