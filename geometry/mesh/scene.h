@@ -5,6 +5,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "geometry/core/vec3.h"
@@ -66,15 +67,11 @@ class Scene {
   const Aabb& bounds() const { return nodes_.empty() ? empty_box_ : nodes_[0].box; }
   const std::vector<BvhNode>& bvh_nodes() const { return nodes_; }
   const std::vector<std::uint32_t>& bvh_triangle_order() const { return order_; }
-  // A point query on the BVH: calls stop = visit(t) for every triangle t of a leaf whose box holds
-  // the vertical line through (x, y) and reaches up to z_min or above (a superset: the caller
-  // tests the triangle), until a visit returns true; returns whether one did. `stack` is scratch
-  // (no allocation once it has grown).
-  template <class Visit>
-  bool any_triangle_over(double x, double y, double z_min, std::vector<std::uint32_t>& stack, Visit&& visit) const {
-    const auto holds = [&](const Aabb& b) {
-      return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y();
-    };
+  // A BVH query: calls stop = visit(t) for every triangle t of a leaf reached through boxes for
+  // which holds(box) is true (a superset: the caller tests the triangle), until a visit returns
+  // true; returns whether one did. `stack` is scratch (no allocation once it has grown).
+  template <class Holds, class Visit>
+  bool any_triangle_in(Holds&& holds, std::vector<std::uint32_t>& stack, Visit&& visit) const {
     if (nodes_.empty() || !holds(nodes_[0].box)) return false;
     stack.clear();
     stack.push_back(0);
@@ -90,6 +87,14 @@ class Scene {
         if (visit(order_[k])) return true;
     }
     return false;
+  }
+  // The triangles of leaves whose box holds the vertical line through (x, y) and reaches up to
+  // z_min or above, as any_triangle_in.
+  template <class Visit>
+  bool any_triangle_over(double x, double y, double z_min, std::vector<std::uint32_t>& stack, Visit&& visit) const {
+    return any_triangle_in(
+        [&](const Aabb& b) { return b.hi.z() >= z_min && b.lo.x() <= x && x <= b.hi.x() && b.lo.y() <= y && y <= b.hi.y(); },
+        stack, std::forward<Visit>(visit));
   }
   // Geometric (unnormalised) normal of triangle t by its winding: (v1 − v0) × (v2 − v0).
   Vec3 triangle_normal(std::uint32_t t) const;

@@ -8,33 +8,6 @@
 
 namespace skyband {
 
-namespace {
-
-// Calls f(t) for each triangle t of a leaf whose box's xy, widened by r, holds (x, y).
-template <class F>
-void triangles_near_column(const Scene& scene, double x, double y, double r, std::vector<std::uint32_t>& stack, F&& f) {
-  const std::vector<BvhNode>& nodes = scene.bvh_nodes();
-  const std::vector<std::uint32_t>& order = scene.bvh_triangle_order();
-  const auto holds = [&](const Aabb& b) {
-    return b.lo.x() - r <= x && x <= b.hi.x() + r && b.lo.y() - r <= y && y <= b.hi.y() + r;
-  };
-  if (nodes.empty() || !holds(nodes[0].box)) return;
-  stack.clear();
-  stack.push_back(0);
-  while (!stack.empty()) {
-    const BvhNode& node = nodes[stack.back()];
-    stack.pop_back();
-    if (node.count == 0) {
-      for (const std::uint32_t child : {node.first, node.first + 1})
-        if (holds(nodes[child].box)) stack.push_back(child);
-      continue;
-    }
-    for (std::uint32_t k = node.first; k < node.first + node.count; ++k) f(order[k]);
-  }
-}
-
-}  // namespace
-
 QueryPoint clear_of_planes(const Scene& scene, const QueryPoint& q, double offset_m, std::vector<std::uint32_t>& stack) {
   QueryPoint out = q;
   const TriangleSoup& soup = scene.soup();
@@ -53,12 +26,16 @@ QueryPoint clear_of_planes(const Scene& scene, const QueryPoint& q, double offse
       move += double(s) * u;
       near = true;
     };
-    triangles_near_column(scene, p.x(), p.y(), delta, stack, [&](std::uint32_t t) {
+    // Triangles of leaves whose box's xy, widened by δ, holds the point's.
+    const auto near_column = [&](const Aabb& b) {
+      return b.lo.x() - delta <= p.x() && p.x() <= b.hi.x() + delta && b.lo.y() - delta <= p.y() && p.y() <= b.hi.y() + delta;
+    };
+    scene.any_triangle_in(near_column, stack, [&](std::uint32_t t) {
       const auto& tri = soup.triangles[t];
       const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
       const Vec3 m = (b - a).cross(c - a);
       const double mn = m.norm();
-      if (!(mn > 0)) return;
+      if (!(mn > 0)) return false;
       if (std::abs(m.dot(p - a)) <= delta * mn)
         push(-exact_orientation(a, b, c, p), m / mn);  // det[a − p, b − p, c − p] = −(p − a)·m
       // The vertical plane of each edge, where the point's xy lies along the edge.
@@ -73,6 +50,7 @@ QueryPoint clear_of_planes(const Scene& scene, const QueryPoint& q, double offse
         if (std::abs(hx * py - hy * px) > delta * len) continue;
         push(exact_orient2d_sign(u, w, p), Vec3(-hy / len, hx / len, 0));  // + : left of u → w
       }
+      return false;  // every triangle near the column
     });
     if (!near) return out;
     const double mlen = move.norm();
