@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -11,8 +12,11 @@
 namespace skyband {
 
 std::size_t horizon_azimuth_count(double step_deg) {
-  if (!(step_deg > 0) || !(step_deg <= 360) || !std::isfinite(step_deg))
-    throw InputError("--horizon-step " + std::to_string(step_deg) + ": must be > 0 and <= 360 degrees");
+  if (!(step_deg >= kMinHorizonStepDeg) || !(step_deg <= 360)) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.6g", step_deg);
+    throw InputError(std::string("--horizon-step ") + value + ": must be between 0.01 and 360 degrees");
+  }
   std::size_t m = 0;
   while (double(m) * step_deg < 360.0) ++m;
   return m;
@@ -27,7 +31,8 @@ void for_each_horizon_profile(const Scene& scene, std::span<const QueryPoint> po
     const double az = double(k) * step_deg * kPi / 180;  // clockwise from north: x east, y north
     wx[k] = std::sin(az), wy[k] = std::cos(az);
   }
-  constexpr std::size_t kBlock = 4096;
+  // Points per block: at most 4096, and at most ~2²² elevations (32 MB) however fine the step.
+  const std::size_t kBlock = std::clamp<std::size_t>((std::size_t(1) << 22) / m, 1, 4096);
   std::vector<QueryPoint> up;
   std::vector<double> elevations;
   for (std::size_t first = 0; first < points.size(); first += kBlock) {

@@ -19,14 +19,18 @@
 
 namespace skyband {
 
+// The finest azimuth step (degrees): 36,000 azimuths per point, far below the angular size of any
+// building edge a profile is read for, and a bound on the rows written per point.
+inline constexpr double kMinHorizonStepDeg = 0.01;
+
 // Azimuths k·step_deg (degrees clockwise from north, k = 0 … while < 360). Throws InputError
-// unless 0 < step_deg ≤ 360.
+// unless kMinHorizonStepDeg ≤ step_deg ≤ 360.
 std::size_t horizon_azimuth_count(double step_deg);
 
 // The profiles in blocks of consecutive points, in input order: consume(first, count, elevations)
 // with elevations[(i − first)·m + k] the elevation (degrees above the horizontal) of point i at
-// azimuth k·step_deg, m = horizon_azimuth_count(step_deg). Memory O(block), whatever the number of
-// points; each block is computed on `threads` workers (0 = all cores). `progress(done, total)`.
+// azimuth k·step_deg, m = horizon_azimuth_count(step_deg). Memory O(block) (at most 4096 points and
+// ~2²² elevations), whatever the number of points; each block is computed on `threads` workers (0 = all cores). `progress(done, total)`.
 void for_each_horizon_profile(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
                               double step_deg, int threads, const std::function<void(std::size_t, std::size_t)>& progress,
                               const std::function<void(std::size_t, std::size_t, std::span<const double>)>& consume);
