@@ -30,7 +30,8 @@ std::size_t horizon_azimuth_count(double step_deg);
 // The profiles in blocks of consecutive points, in input order: consume(first, count, elevations)
 // with elevations[(i − first)·m + k] the elevation (degrees above the horizontal) of point i at
 // azimuth k·step_deg, m = horizon_azimuth_count(step_deg). Memory O(block) (at most 4096 points and
-// ~2²² elevations), whatever the number of points; each block is computed on `threads` workers (0 = all cores). `progress(done, total)`.
+// ~2²² elevations), whatever the number of points; each block is computed on `threads` workers (0 = all cores). `progress(done,
+// total)`.
 void for_each_horizon_profile(const Scene& scene, std::span<const QueryPoint> points, const VisibilityOptions& options,
                               double step_deg, int threads, const std::function<void(std::size_t, std::size_t)>& progress,
                               const std::function<void(std::size_t, std::size_t, std::span<const double>)>& consume);
