@@ -8,6 +8,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -983,6 +984,13 @@ Lod parse_lod(const Elem& v, const Where& where, const std::string& pointer) {
 
 // ---- Vertices ------------------------------------------------------------------------------
 
+// A number for a message: 6 significant digits (1e+15, 0.125, 1e-320).
+std::string number_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
 struct Transform {
   bool present = false;
   std::array<double, 3> scale{1, 1, 1}, translate{0, 0, 0};
@@ -1010,10 +1018,25 @@ Transform read_transform(const Chunk& chunk, dom::parser& parser, const Where& w
       if (!v.is_number() || !std::isfinite(number(v)))
         fail(where, pointer + "/" + std::to_string(k), value_text(v) + " is not a finite number");
       (name[0] == 's' ? t.scale : t.translate)[k] = number(v);
+      if (name[0] != 's') continue;
+      if (number(v) == 0) fail(where, pointer + "/" + std::to_string(k), "scale 0 collapses every vertex");
+      // Below 1e-12 m (a picometre) the integer vertices span less than a millimetre, and a
+      // subnormal scale loses the integers' digits in the product: no model is drawn at that scale.
+      if (std::abs(number(v)) < 1e-12)
+        fail(where, pointer + "/" + std::to_string(k),
+             "scale " + value_text(v) + " is below 1e-12 m: the vertices would collapse");
     }
   }
-  for (std::size_t k = 0; k < 3; ++k)
-    if (t.scale[k] == 0) fail(where, "/transform/scale/" + std::to_string(k), "scale 0 collapses every vertex");
+  // A translation whose spacing of doubles is coarser than the scale rounds every coordinate to
+  // that spacing: the file's integers carry digits the sums cannot hold.
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double t_abs = std::abs(t.translate[k]);
+    const double spacing = std::nextafter(t_abs, std::numeric_limits<double>::infinity()) - t_abs;
+    if (spacing > std::abs(t.scale[k]))
+      notes.add("transform translate " + number_text(t.translate[k]) + " holds coordinates only to " + number_text(spacing) +
+                    " m, coarser than the scale " + number_text(t.scale[k]) + ": vertices are rounded to that step",
+                "/transform/translate/" + std::to_string(k));
+  }
   t.present = true;
   return t;
 }

@@ -587,9 +587,9 @@ void ExactSky::walk() {
       push(node.first + 1);
     }
     if (deferred_.empty()) break;
-    std::vector<std::uint32_t> again;
-    again.swap(deferred_);
-    for (const std::uint32_t index : again) {
+    retest_.swap(deferred_);
+    deferred_.clear();
+    for (const std::uint32_t index : retest_) {
       if (node_hidden(nodes[index].box)) continue;
       opened_[index] = generation_;
       push(index);

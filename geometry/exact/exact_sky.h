@@ -98,6 +98,7 @@ class ExactSky {
   OccludedSky sky_;
   std::array<std::vector<std::uint32_t>, 128> buckets_;
   std::vector<std::uint32_t> deferred_;      // nodes hidden only if the gaps closed
+  std::vector<std::uint32_t> retest_;        // scratch: the deferred nodes being tested again
   std::vector<std::uint32_t> small_;         // occluders seen small, projected last
   double small_fraction_ = 5e-4;             // twice the solid angle (sr) below which an occluder is small
   std::vector<std::uint32_t> opened_;        // per node: == generation_ once it must be opened

@@ -551,6 +551,23 @@ BOOST_AUTO_TEST_CASE(cityjson_1_0_without_transform_reads_real_vertices) {
   BOOST_TEST(vector_area(s, s.vertices[0]).z() == 6.0);                   // 2 × 3 m, exact
 }
 
+// A translation of 1e15 m has doubles spaced 0.125 m apart (2^(49 − 52)): with a scale of 0.001 the
+// vertices are rounded to 0.125 m, which the report says; at 85000 m the spacing is 1.5e-11 m
+// (2^(16 − 52)), finer than the scale, and nothing is said.
+BOOST_AUTO_TEST_CASE(a_translation_coarser_than_the_scale_is_reported) {
+  const std::string geometry = R"({"type":"Solid","lod":"1","boundaries":[)" + kCubeShell + "]}";
+  std::string text = model(geometry, kCubeVertices);
+  CityModelReport fine;
+  (void)read_cityjson(write_file("translate_fine.city.json", text), {}, &fine);
+  BOOST_TEST(!has_note(fine, "coarser than the scale"));
+  text.replace(text.find("[85000,446000,0]"), 16, "[1e15,446000,0]");
+  CityModelReport coarse;
+  const TriangleSoup s = read_cityjson(write_file("translate_coarse.city.json", text), {}, &coarse);
+  BOOST_TEST(has_note(coarse, "transform translate 1e+15 holds coordinates only to 0.125 m, coarser than the scale 0.001"));
+  BOOST_TEST(!has_note(coarse, "translate 446000"));
+  BOOST_TEST(s.triangle_count() == 12u);
+}
+
 BOOST_AUTO_TEST_CASE(solid_multisolid_compositesolid_nesting_and_closed_cubes) {
   for (const char* type : {"Solid", "MultiSolid", "CompositeSolid"}) {
     const bool multi = std::string(type) != "Solid";
@@ -687,6 +704,9 @@ BOOST_AUTO_TEST_CASE(errors_name_file_path_and_value) {
       {"bad_transform.city.json",
        R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0,0.001],"translate":[0,0,0]},"CityObjects":{},"vertices":[]})",
        {"/transform/scale/1", "scale 0"}},
+      {"scale_subnormal.city.json",
+       R"({"type":"CityJSON","version":"2.0","transform":{"scale":[0.001,0.001,1e-320],"translate":[0,0,0]},"CityObjects":{},"vertices":[]})",
+       {"/transform/scale/2", "scale 1e-320 is below 1e-12 m"}},
       {"overflow.city.json",
        R"({"type":"CityJSON","version":"1.0","CityObjects":{},"vertices":[[0,1e999,0]]})",
        {"not JSON", "number overflow", "1e999"}},
