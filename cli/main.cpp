@@ -10,6 +10,7 @@
 
 #include "cli/command_registry.h"
 #include "geometry/core/input_error.h"
+#include "io/interrupted_output.h"
 #include "io/utf8_text.h"
 
 namespace skyband::cli {
@@ -90,6 +91,7 @@ std::string did_you_mean(CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace skyband;
+  remove_temporary_outputs_on_interrupt();
   for (int i = 0; i < argc; ++i) {
     if (i) cli::g_invocation += ' ';
     cli::g_invocation += argv[i];

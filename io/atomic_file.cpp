@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "geometry/core/input_error.h"
+#include "io/interrupted_output.h"
 
 namespace skyband {
 
@@ -20,6 +21,7 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
   name += path.filename().string();
   name += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
   const fs::path temp = dir / name;
+  const TemporaryOutput removed_on_interrupt(temp);
   try {
     write(temp);
   } catch (...) {

@@ -16,6 +16,7 @@ void HourlyNetcdfWriter::check(int status, const char* what) const {
 HourlyNetcdfWriter::HourlyNetcdfWriter(const HourlyNetcdfSpec& spec) : file_(spec.file), times_(spec.time_begin_h.size()) {
   temp_ = file_;
   temp_ += ".partial";
+  removed_on_interrupt_ = std::make_unique<TemporaryOutput>(temp_);
   check(nc_create(temp_.c_str(), NC_CLOBBER | NC_NETCDF4, &ncid_), "create");
   open_ = true;
   int dim_point, dim_time, dim_nv;
@@ -123,6 +124,7 @@ void HourlyNetcdfWriter::commit() {
   open_ = false;
   std::error_code ec;
   std::filesystem::rename(temp_, file_, ec);
+  removed_on_interrupt_.reset();
   if (ec) {
     std::filesystem::remove(temp_, ec);
     throw InputError(file_.string() + ": cannot write (" + ec.message() + ")");

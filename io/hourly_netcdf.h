@@ -19,12 +19,14 @@
 // is written under a temporary name beside the target and renamed when complete: an interrupted
 // run leaves no half-written file.
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "geometry/bands/band_visibility.h"
+#include "io/interrupted_output.h"
 
 namespace skyband {
 
@@ -55,6 +57,7 @@ class HourlyNetcdfWriter {
  private:
   void check(int status, const char* what) const;
   std::filesystem::path file_, temp_;
+  std::unique_ptr<TemporaryOutput> removed_on_interrupt_;  // temp_, while it is not committed
   std::size_t times_ = 0;
   int ncid_ = -1;
   int var_[5] = {-1, -1, -1, -1, -1};
