@@ -1,5 +1,6 @@
 #include "io/tmy3_reader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -26,15 +27,43 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i)
-    if (i == line.size() || line[i] == ',') {
-      out.push_back(trim(line.substr(start, i - start)));
-      start = i + 1;
+// The comma-separated fields of one line, RFC 4180 style: a field may be enclosed in double quotes
+// and then hold commas, with "" for a quote inside. Spaces and tabs around a field (outside its
+// quotes) are trimmed. `fail` receives the 1-based field and a reason for a quote that is never
+// closed or text after a closing quote, with the offset in `line` where that field starts, and does
+// not return.
+template <class Fail>
+void split(std::string_view line, std::vector<std::string>& out, Fail&& fail) {
+  out.clear();
+  std::size_t i = 0;
+  for (;;) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::string field;
+    const std::size_t start = i;
+    if (i < line.size() && line[i] == '"') {
+      for (++i;; ++i) {
+        if (i >= line.size()) fail(out.size() + 1, start, "the quoted field is never closed on its line");
+        if (line[i] != '"') {
+          field += line[i];
+        } else if (i + 1 < line.size() && line[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          break;
+        }
+      }
+      ++i;  // past the closing quote
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i < line.size() && line[i] != ',') fail(out.size() + 1, start, "text after the closing quote");
+    } else {
+      const std::size_t comma = std::min(line.find(',', i), line.size());
+      field = std::string(trim(line.substr(i, comma - i)));
+      i = comma;
     }
-  return out;
+    out.push_back(std::move(field));
+    if (i >= line.size()) return;
+    ++i;  // past the comma
+  }
 }
 
 std::string slurp(const std::filesystem::path& file) {
@@ -82,6 +111,16 @@ class Tmy3Parser {
                      "': " + why);
   }
 
+  // The fields of line `line` into `out`; a malformed quoted field is an InputError naming the
+  // file, line, field and its text.
+  void split_line(std::size_t line, std::string_view text, std::vector<std::string>& out) const {
+    split(text, out, [&](std::size_t field, std::size_t start, const char* why) {
+      const std::string_view rest = text.substr(start);
+      throw InputError(name_ + ":" + std::to_string(line) + ": field " + std::to_string(field) + " = '" +
+                       printable_text(rest.substr(0, 40)) + (rest.size() > 40 ? "…" : "") + "': " + why);
+    });
+  }
+
   double number(std::size_t line, std::string_view column, std::string_view text) const {
     double v = 0;
     const char* end = text.data() + text.size();
@@ -92,15 +131,14 @@ class Tmy3Parser {
   }
 
   WeatherLocation site(const std::pair<std::size_t, std::string_view>& l) {
-    const auto f = split(l.second);
+    std::vector<std::string> f;
+    split_line(l.first, l.second, f);
     if (f.size() < 7)
       throw InputError(name_ + ":1: the site line has " + std::to_string(f.size()) +
                        " fields; TMY3's has 7 (USAF, name, state, time zone, latitude, longitude, elevation)");
     WeatherLocation w;
     w.station_id = std::string(f[0]);
-    std::string_view name = f[1];
-    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
-    w.name = printable_text(name);
+    w.name = printable_text(f[1]);
     w.region = printable_text(f[2]);
     w.country = "USA";
     w.source = "TMY3";
@@ -116,7 +154,7 @@ class Tmy3Parser {
   }
 
   void columns(const std::pair<std::size_t, std::string_view>& l) {
-    names_ = split(l.second);
+    split_line(l.first, l.second, names_);
     const auto find = [&](std::string_view name, bool required) {
       for (std::size_t i = 0; i < names_.size(); ++i)
         if (names_[i] == name) return int(i);
@@ -152,7 +190,7 @@ class Tmy3Parser {
   }
 
   WeatherRecord record(std::size_t line, std::string_view text) {
-    fields_ = split(text);
+    split_line(line, text, fields_);
     if (fields_.size() != names_.size())
       throw InputError(name_ + ":" + std::to_string(line) + ": " + std::to_string(fields_.size()) + " fields for " +
                        std::to_string(names_.size()) + " columns");
@@ -220,7 +258,7 @@ class Tmy3Parser {
   std::filesystem::path file_;
   std::string name_;
   std::vector<std::pair<std::size_t, std::string_view>> lines_;
-  std::vector<std::string_view> names_, fields_;
+  std::vector<std::string> names_, fields_;
   int date_ = -1, time_ = -1, ghi_ = -1, dni_ = -1, dhi_ = -1, gh_lux_ = -1, dn_lux_ = -1, dh_lux_ = -1, dew_ = -1, albedo_ = -1;
   WeatherRecord previous_;
   std::size_t previous_line_ = 0, invalid_albedo_ = 0;

@@ -10,6 +10,10 @@
 // files cut down by other tools keep the names): "GHI (W/m^2)", "DNI (W/m^2)", "DHI (W/m^2)"
 // (the energy received over the hour ending at the time, Wh/m²: the hourly mean in W/m²),
 // "GH illum (lx)", "DN illum (lx)", "DH illum (lx)", "Dew-point (C)", "Alb (unitless)".
+// Fields are comma-separated, RFC 4180 style on every line: a field in double quotes may hold
+// commas (a site name such as "GREENSBORO, PIEDMONT TRIAD INT") and "" for a quote; spaces around
+// a field are trimmed; a quote never closed on its line, or text after a closing quote, is an
+// InputError naming the line and the field.
 // Missing values are -9900 (the manual's code), and anything ≤ -9900:
 //   radiation missing or < 0 or > 1400 Wh/m²  → InputError (no default is sensible)
 //   illuminance missing → std::nullopt; < 0 or > 150000 lux → InputError
