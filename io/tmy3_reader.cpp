@@ -99,8 +99,18 @@ class Tmy3Parser {
     if (!(a.month == 1 && a.day == 1 && a.hour == 1) || !(b.month == 12 && b.day == 31 && b.hour == 24))
       s.warnings.push_back(name_ + ": the " + std::to_string(s.records.size()) +
                            " records are not whole calendar years (01/01 01:00 to 12/31 24:00)");
-    if (invalid_albedo_ > 0)
-      s.warnings.push_back(name_ + ": " + std::to_string(invalid_albedo_) + " albedo value(s) outside [0, 1] treated as missing");
+    if (const std::size_t n = unknown_source_albedo_ + zero_albedo_ + invalid_albedo_; n > 0) {
+      std::string why;
+      const auto add = [&](std::size_t count, const std::string& what) {
+        if (count > 0) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+      };
+      add(unknown_source_albedo_, "with source flag '?' (no known source)");
+      add(zero_albedo_, "of 0 (no ground reflects nothing; files write 0 where the albedo is unknown)");
+      add(invalid_albedo_, "outside [0, 1]");
+      s.warnings.push_back(name_ + ": " + std::to_string(n) + " albedo value(s) in column '" + names_[std::size_t(albedo_)] +
+                           "' treated as missing: " + why + "; first on line " + std::to_string(first_missing_albedo_line_) +
+                           ": the ground albedo there is --albedo or the default 0.2");
+    }
     if (!daylight_) s.warnings.push_back(name_ + ": no solar radiation in any record (GHI and DHI are all zero)");
     return s;
   }
@@ -171,6 +181,7 @@ class Tmy3Parser {
     dh_lux_ = find("DH illum (lx)", false);
     dew_ = find("Dew-point (C)", false);
     albedo_ = find("Alb (unitless)", false);
+    albedo_source_ = find("Alb source", false);
   }
 
   double radiation(std::size_t line, int c) const {
@@ -225,10 +236,16 @@ class Tmy3Parser {
     if (albedo_ >= 0) {
       const double v = number(line, names_[std::size_t(albedo_)], fields_[std::size_t(albedo_)]);
       if (v > kMissing) {
-        if (v >= 0 && v <= 1)
+        const std::size_t missing_before = unknown_source_albedo_ + zero_albedo_ + invalid_albedo_;
+        if (albedo_source_ >= 0 && fields_[std::size_t(albedo_source_)] == "?")
+          ++unknown_source_albedo_;  // TMY3 files write 0.00 flagged '?' where they have no albedo
+        else if (v == 0)
+          ++zero_albedo_;  // no ground reflects nothing: files write 0 where the albedo is unknown
+        else if (v > 0 && v <= 1)
           r.albedo = v;
         else
           ++invalid_albedo_;
+        if (missing_before == 0 && !r.albedo) first_missing_albedo_line_ = line;
       }
     }
     if (r.ghi_Wh_m2 > 0 || r.dhi_Wh_m2 > 0) daylight_ = true;
@@ -259,9 +276,11 @@ class Tmy3Parser {
   std::string name_;
   std::vector<std::pair<std::size_t, std::string_view>> lines_;
   std::vector<std::string> names_, fields_;
-  int date_ = -1, time_ = -1, ghi_ = -1, dni_ = -1, dhi_ = -1, gh_lux_ = -1, dn_lux_ = -1, dh_lux_ = -1, dew_ = -1, albedo_ = -1;
+  int date_ = -1, time_ = -1, ghi_ = -1, dni_ = -1, dhi_ = -1, gh_lux_ = -1, dn_lux_ = -1, dh_lux_ = -1, dew_ = -1, albedo_ = -1,
+      albedo_source_ = -1;
   WeatherRecord previous_;
-  std::size_t previous_line_ = 0, invalid_albedo_ = 0;
+  std::size_t previous_line_ = 0, unknown_source_albedo_ = 0, zero_albedo_ = 0, invalid_albedo_ = 0,
+              first_missing_albedo_line_ = 0;
   bool have_previous_ = false, daylight_ = false;
 };
 

@@ -201,3 +201,47 @@ BOOST_AUTO_TEST_CASE(quoted_fields_may_hold_commas) {
     BOOST_TEST(m.find(c.message) != std::string::npos, c.name << ": " << m);
   }
 }
+
+// An albedo flagged '?' (no known source: TMY3 files write 0.00 so flagged where they have no
+// albedo) or of exactly 0 (no ground reflects nothing) is missing, as one outside [0, 1] is: the
+// ground albedo there is --albedo or the default. One warning line counts them for the file.
+BOOST_AUTO_TEST_CASE(unknown_albedos_are_missing_with_one_warning) {
+  const auto row = [](int hour, const char* albedo, const char* flag) {
+    char b[160];
+    std::snprintf(b, sizeof b, "01/01/1990,%02d:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,%s,%s,8\n", hour,
+                  albedo, flag);
+    return std::string(b);
+  };
+  const std::string csv = kSite + test::kTmy3Header + row(1, "0.00", "?") + row(2, "0.17", "?") + row(3, "0.00", "F") +
+                          row(4, "0.17", "F") + row(5, "1.5", "F") + row(6, "-9900", "?") + row(7, "0.170", "E");
+  const fs::path p = write_text("flags.csv", csv);
+  const WeatherSeries s = read_tmy3_csv(p);
+  BOOST_REQUIRE(s.records.size() == 7u);
+  BOOST_TEST(!s.records[0].albedo.has_value());  // 0.00 flagged '?'
+  BOOST_TEST(!s.records[1].albedo.has_value());  // flagged '?': no source, whatever the value
+  BOOST_TEST(!s.records[2].albedo.has_value());  // 0 with a source flag
+  BOOST_TEST(*s.records[3].albedo == 0.17);
+  BOOST_TEST(!s.records[4].albedo.has_value());  // outside [0, 1]
+  BOOST_TEST(!s.records[5].albedo.has_value());  // the missing code: not counted
+  BOOST_TEST(*s.records[6].albedo == 0.17);
+  std::vector<std::string> albedo_lines;
+  for (const auto& w : s.warnings)
+    if (w.find("albedo value(s)") != std::string::npos) albedo_lines.push_back(w);
+  BOOST_REQUIRE_EQUAL(albedo_lines.size(), 1u);
+  const std::string& w = albedo_lines[0];
+  BOOST_TEST(w.find(p.string() + ": 4 albedo value(s) in column 'Alb (unitless)' treated as missing: ") == 0u, w);
+  BOOST_TEST(w.find("2 with source flag '?'") != std::string::npos, w);
+  BOOST_TEST(w.find("1 of 0 (no ground reflects nothing") != std::string::npos, w);
+  BOOST_TEST(w.find("1 outside [0, 1]") != std::string::npos, w);
+  BOOST_TEST(w.find("first on line 3") != std::string::npos, w);
+  BOOST_TEST(w.find("--albedo or the default 0.2") != std::string::npos, w);
+
+  // A whole day of the usual 0.00 '?' gives one line, not one per record.
+  std::string day = kSite + test::kTmy3Header;
+  for (int h = 1; h <= 24; ++h) day += row(h, "0.00", "?");
+  const WeatherSeries d = read_tmy3_csv(write_text("flags_day.csv", day));
+  std::size_t lines = 0;
+  for (const auto& m : d.warnings) lines += m.find("albedo value(s)") != std::string::npos;
+  BOOST_TEST(lines == 1u);
+  BOOST_TEST(d.warnings.size() == 3u);  // that line, the partial year and a day without radiation
+}
