@@ -29,8 +29,8 @@
 // all-weather sky of each hour, the sun from its DNI, the ground seen below the horizon), in
 // broadband shortwave kWh·m⁻² as the file measures: svf, sky_exposure, ground_view,
 // global_kWh_m2, sky_kWh_m2, sun_kWh_m2, ground_kWh_m2, global_klxh (kilolux-hours), sun_hours.
-// The file's warnings and its timing check (radiation against the sun, weather_timing.h) go to
-// stderr.
+// The file's warnings, its timing check (radiation against the sun, weather_timing.h) and its
+// closure check (GHI against DHI + DNI·cos z, weather_closure.h) go to stderr.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -53,6 +53,7 @@
 #include "io/tmy3_reader.h"
 #include "lighting/climate/climate_irradiation.h"
 #include "lighting/climate/moment_series.h"
+#include "lighting/climate/weather_closure.h"
 #include "lighting/climate/weather_hours.h"
 #include "lighting/climate/weather_timing.h"
 #include "lighting/integrals/point_irradiance.h"
@@ -316,6 +317,8 @@ void run_weather(const IrradianceArgs& a) {
     hopt.sun_fraction = 1.0;
   WeatherHoursReport hrep;
   const std::vector<WeatherHour> hours = weather_hours(series, hopt, &hrep);
+  if (const auto w = weather_closure_warning(series, weather_closure(series, hours)))
+    std::fprintf(stderr, "skyband: warning: %s\n", w->c_str());
 
   const std::vector<std::string> columns = {"svf",        "sky_exposure",  "ground_view", "global_kWh_m2", "sky_kWh_m2",
                                             "sun_kWh_m2", "ground_kWh_m2", "global_klxh", "sun_hours"};

@@ -1,5 +1,6 @@
 #include "io/tmy3_reader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -26,15 +27,43 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i)
-    if (i == line.size() || line[i] == ',') {
-      out.push_back(trim(line.substr(start, i - start)));
-      start = i + 1;
+// The comma-separated fields of one line, RFC 4180 style: a field may be enclosed in double quotes
+// and then hold commas, with "" for a quote inside. Spaces and tabs around a field (outside its
+// quotes) are trimmed. `fail` receives the 1-based field and a reason for a quote that is never
+// closed or text after a closing quote, with the offset in `line` where that field starts, and does
+// not return.
+template <class Fail>
+void split(std::string_view line, std::vector<std::string>& out, Fail&& fail) {
+  out.clear();
+  std::size_t i = 0;
+  for (;;) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    std::string field;
+    const std::size_t start = i;
+    if (i < line.size() && line[i] == '"') {
+      for (++i;; ++i) {
+        if (i >= line.size()) fail(out.size() + 1, start, "the quoted field is never closed on its line");
+        if (line[i] != '"') {
+          field += line[i];
+        } else if (i + 1 < line.size() && line[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          break;
+        }
+      }
+      ++i;  // past the closing quote
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i < line.size() && line[i] != ',') fail(out.size() + 1, start, "text after the closing quote");
+    } else {
+      const std::size_t comma = std::min(line.find(',', i), line.size());
+      field = std::string(trim(line.substr(i, comma - i)));
+      i = comma;
     }
-  return out;
+    out.push_back(std::move(field));
+    if (i >= line.size()) return;
+    ++i;  // past the comma
+  }
 }
 
 std::string slurp(const std::filesystem::path& file) {
@@ -70,8 +99,18 @@ class Tmy3Parser {
     if (!(a.month == 1 && a.day == 1 && a.hour == 1) || !(b.month == 12 && b.day == 31 && b.hour == 24))
       s.warnings.push_back(name_ + ": the " + std::to_string(s.records.size()) +
                            " records are not whole calendar years (01/01 01:00 to 12/31 24:00)");
-    if (invalid_albedo_ > 0)
-      s.warnings.push_back(name_ + ": " + std::to_string(invalid_albedo_) + " albedo value(s) outside [0, 1] treated as missing");
+    if (const std::size_t n = unknown_source_albedo_ + zero_albedo_ + invalid_albedo_; n > 0) {
+      std::string why;
+      const auto add = [&](std::size_t count, const std::string& what) {
+        if (count > 0) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+      };
+      add(unknown_source_albedo_, "with source flag '?' (no known source)");
+      add(zero_albedo_, "of 0 (no ground reflects nothing; files write 0 where the albedo is unknown)");
+      add(invalid_albedo_, "outside [0, 1]");
+      s.warnings.push_back(name_ + ": " + std::to_string(n) + " albedo value(s) in column '" + names_[std::size_t(albedo_)] +
+                           "' treated as missing: " + why + "; first on line " + std::to_string(first_missing_albedo_line_) +
+                           ": the ground albedo there is --albedo or the default 0.2");
+    }
     if (!daylight_) s.warnings.push_back(name_ + ": no solar radiation in any record (GHI and DHI are all zero)");
     return s;
   }
@@ -80,6 +119,16 @@ class Tmy3Parser {
   [[noreturn]] void fail(std::size_t line, std::string_view column, std::string_view value, const std::string& why) const {
     throw InputError(name_ + ":" + std::to_string(line) + ": " + std::string(column) + " = '" + printable_text(value) +
                      "': " + why);
+  }
+
+  // The fields of line `line` into `out`; a malformed quoted field is an InputError naming the
+  // file, line, field and its text.
+  void split_line(std::size_t line, std::string_view text, std::vector<std::string>& out) const {
+    split(text, out, [&](std::size_t field, std::size_t start, const char* why) {
+      const std::string_view rest = text.substr(start);
+      throw InputError(name_ + ":" + std::to_string(line) + ": field " + std::to_string(field) + " = '" +
+                       printable_text(rest.substr(0, 40)) + (rest.size() > 40 ? "…" : "") + "': " + why);
+    });
   }
 
   double number(std::size_t line, std::string_view column, std::string_view text) const {
@@ -92,15 +141,14 @@ class Tmy3Parser {
   }
 
   WeatherLocation site(const std::pair<std::size_t, std::string_view>& l) {
-    const auto f = split(l.second);
+    std::vector<std::string> f;
+    split_line(l.first, l.second, f);
     if (f.size() < 7)
       throw InputError(name_ + ":1: the site line has " + std::to_string(f.size()) +
                        " fields; TMY3's has 7 (USAF, name, state, time zone, latitude, longitude, elevation)");
     WeatherLocation w;
     w.station_id = std::string(f[0]);
-    std::string_view name = f[1];
-    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
-    w.name = printable_text(name);
+    w.name = printable_text(f[1]);
     w.region = printable_text(f[2]);
     w.country = "USA";
     w.source = "TMY3";
@@ -116,7 +164,7 @@ class Tmy3Parser {
   }
 
   void columns(const std::pair<std::size_t, std::string_view>& l) {
-    names_ = split(l.second);
+    split_line(l.first, l.second, names_);
     const auto find = [&](std::string_view name, bool required) {
       for (std::size_t i = 0; i < names_.size(); ++i)
         if (names_[i] == name) return int(i);
@@ -133,6 +181,7 @@ class Tmy3Parser {
     dh_lux_ = find("DH illum (lx)", false);
     dew_ = find("Dew-point (C)", false);
     albedo_ = find("Alb (unitless)", false);
+    albedo_source_ = find("Alb source", false);
   }
 
   double radiation(std::size_t line, int c) const {
@@ -152,7 +201,7 @@ class Tmy3Parser {
   }
 
   WeatherRecord record(std::size_t line, std::string_view text) {
-    fields_ = split(text);
+    split_line(line, text, fields_);
     if (fields_.size() != names_.size())
       throw InputError(name_ + ":" + std::to_string(line) + ": " + std::to_string(fields_.size()) + " fields for " +
                        std::to_string(names_.size()) + " columns");
@@ -187,10 +236,16 @@ class Tmy3Parser {
     if (albedo_ >= 0) {
       const double v = number(line, names_[std::size_t(albedo_)], fields_[std::size_t(albedo_)]);
       if (v > kMissing) {
-        if (v >= 0 && v <= 1)
+        const std::size_t missing_before = unknown_source_albedo_ + zero_albedo_ + invalid_albedo_;
+        if (albedo_source_ >= 0 && fields_[std::size_t(albedo_source_)] == "?")
+          ++unknown_source_albedo_;  // TMY3 files write 0.00 flagged '?' where they have no albedo
+        else if (v == 0)
+          ++zero_albedo_;  // no ground reflects nothing: files write 0 where the albedo is unknown
+        else if (v > 0 && v <= 1)
           r.albedo = v;
         else
           ++invalid_albedo_;
+        if (missing_before == 0 && !r.albedo) first_missing_albedo_line_ = line;
       }
     }
     if (r.ghi_Wh_m2 > 0 || r.dhi_Wh_m2 > 0) daylight_ = true;
@@ -220,10 +275,12 @@ class Tmy3Parser {
   std::filesystem::path file_;
   std::string name_;
   std::vector<std::pair<std::size_t, std::string_view>> lines_;
-  std::vector<std::string_view> names_, fields_;
-  int date_ = -1, time_ = -1, ghi_ = -1, dni_ = -1, dhi_ = -1, gh_lux_ = -1, dn_lux_ = -1, dh_lux_ = -1, dew_ = -1, albedo_ = -1;
+  std::vector<std::string> names_, fields_;
+  int date_ = -1, time_ = -1, ghi_ = -1, dni_ = -1, dhi_ = -1, gh_lux_ = -1, dn_lux_ = -1, dh_lux_ = -1, dew_ = -1, albedo_ = -1,
+      albedo_source_ = -1;
   WeatherRecord previous_;
-  std::size_t previous_line_ = 0, invalid_albedo_ = 0;
+  std::size_t previous_line_ = 0, unknown_source_albedo_ = 0, zero_albedo_ = 0, invalid_albedo_ = 0,
+              first_missing_albedo_line_ = 0;
   bool have_previous_ = false, daylight_ = false;
 };
 

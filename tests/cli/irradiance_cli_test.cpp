@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -12,6 +13,7 @@
 
 #include "cli/support/cli_runner.h"
 #include "io/support/tmy3_csv.h"
+#include "lighting/support/spencer_sun.h"
 #include "shared_data.h"
 
 namespace tt = boost::test_tools;
@@ -357,6 +359,58 @@ BOOST_AUTO_TEST_CASE(bad_weather_input, *skyband::test::needs_shared_data()) {
           {base + " --sun-at end --sun-altitude 30", "--weather"},
       },
       d / "out.csv");
+}
+
+// June 2019 as an EPW file whose radiation follows the Spencer sun (tests/lighting/support/
+// spencer_sun.h) at 40° N, 105° W, UTC−7 at the middle of each hour, c = cos z there: DNI =
+// 900·(1 − e^(−3c)), DHI = 40 + 120·c, GHI = DHI + DNI·c (0 when c ≤ 0), so that the records close
+// for that sun; the header says `header_latitude_deg`.
+void write_closed_june_epw(const fs::path& file, double header_latitude_deg) {
+  std::ofstream out(file, std::ios::binary);
+  char line[512];
+  std::snprintf(line, sizeof line, "LOCATION,Closure,,XYZ,synthetic,0,%.1f,-105.0,-7.0,1600\n", header_latitude_deg);
+  out << line << "DESIGN CONDITIONS,0\nTYPICAL/EXTREME PERIODS,0\nGROUND TEMPERATURES,0\n"
+      << "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0\nCOMMENTS 1,closed-form synthetic\nCOMMENTS 2,\n"
+      << "DATA PERIODS,1,1,Data,Saturday, 6/ 1, 6/30\n";
+  for (int day = 1; day <= 30; ++day)
+    for (int h = 1; h <= 24; ++h) {
+      const int n = 151 + day;  // day of the year: June 1 is day 152 of 2019
+      const double c = skyband::test::spencer_cos_zenith(40.0, -105.0, -7.0, n, h - 0.5);
+      const double dni = c > 0 ? 900 * (1 - std::exp(-3 * c)) : 0, dhi = c > 0 ? 40 + 120 * c : 0;
+      std::snprintf(line, sizeof line,
+                    "2019,6,%d,%d,0,?9?9?9?9E0?9?9?9?9*9?9?9?9?9?9?9*9?9*9*9?9*9,20.0,10.0,50,101325,0,0,300,"
+                    "%.3f,%.3f,%.3f,999999,999999,999999,9999,180,2.0,0,0,777.7,77777,9,999999999,11,0.0850,0,88,"
+                    "0.200,0.0,0.0\n",
+                    day, h, dhi + dni * c, dni, dhi);
+      out << line;
+    }
+}
+
+// The closure check: the closed-form June is consistent under its own latitude (no closure
+// warning); under the header's latitude of the wrong sign the sun is in the wrong sky and the
+// command warns once, naming the file and the worst month, and still computes.
+BOOST_AUTO_TEST_CASE(radiation_inconsistent_with_the_sun_is_warned) {
+  const fs::path d = skyband::test::test_folder("irradiance_cli_weather_closure");
+  write_cube(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "id,x,y,z,nx,ny,nz\ntop,5,5,10,0,0,1\n";
+  write_closed_june_epw(d / "north.epw", 40.0);
+  write_closed_june_epw(d / "south.epw", -40.0);
+  const std::string base = "irradiance --mesh " + q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --weather ";
+  const auto good = run_skyband(base + q(d / "north.epw") + " --out " + q(d / "north.csv"));
+  BOOST_TEST_REQUIRE(good.exit_code == 0, good.err);
+  BOOST_TEST(good.err.find("does not equal diffuse") == std::string::npos, good.err);
+  BOOST_TEST(good.err.find("earlier than the sun") == std::string::npos, good.err);  // centred by construction
+
+  const auto bad = run_skyband(base + q(d / "south.epw") + " --out " + q(d / "south.csv"));
+  BOOST_TEST_REQUIRE(bad.exit_code == 0, bad.err);  // suspicious, not malformed: computed with a warning
+  const std::string expected = "skyband: warning: " + (d / "south.epw").string() +
+                               ": global horizontal radiation does not equal diffuse + direct normal*cos(zenith): in June "
+                               "(month 6)";
+  BOOST_TEST(bad.err.find(expected) != std::string::npos, bad.err);
+  std::size_t lines = 0;
+  for (std::size_t at = 0; (at = bad.err.find("does not equal diffuse", at)) != std::string::npos; ++at) ++lines;
+  BOOST_TEST(lines == 1u);
+  BOOST_TEST(fs::exists(d / "south.csv"));
 }
 
 // A terrain sheet with a material the defaults do not know hides the ground from the facade

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -152,4 +153,95 @@ BOOST_AUTO_TEST_CASE(refused_files_name_file_line_column_and_value) {
              std::string::npos);
   BOOST_TEST(error_of([&] { read_weather_file(temp_dir() / "missing.csv"); }).find("missing.csv: no such weather file") !=
              std::string::npos);
+}
+
+// Fields are RFC 4180 on every line: quotes may enclose commas ("" is a quote), spaces outside
+// them are trimmed. The site line below is Greensboro's as NREL writes it, with a comma added to
+// its name.
+BOOST_AUTO_TEST_CASE(quoted_fields_may_hold_commas) {
+  const std::string record = "01/01/1990,01:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,0.2,F,8\n";
+  const std::string site = "723170,\"GREENSBORO, PIEDMONT TRIAD INT\",NC,-5.0,36.100,-79.950,273\n";
+  const WeatherSeries s = read_weather_file(write_text("comma.csv", site + test::kTmy3Header + record));
+  BOOST_TEST(s.location.station_id == "723170");
+  BOOST_TEST(s.location.name == "GREENSBORO, PIEDMONT TRIAD INT");
+  BOOST_TEST(s.location.region == "NC");
+  BOOST_TEST(s.location.time_zone_hours == -5.0);
+  BOOST_TEST(s.location.latitude_deg == 36.1);
+  BOOST_TEST(s.location.longitude_deg == -79.95);
+  BOOST_TEST(s.location.elevation_m == 273.0);
+  BOOST_TEST(s.records.size() == 1u);
+
+  // "" inside quotes is one quote; spaces around the quotes are not part of the field; a quoted
+  // number or date in a record is read as the unquoted one.
+  const std::string odd_site = "1, \"O\"\"HARE \"\"X\"\", IL\" ,IL,-6.0,41.983,-87.917,201\n";
+  const std::string quoted_record =
+      "\"01/01/1990\",\"01:00\",0,0,\"12\",1,8,30,1,8,5,1,8,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,\"0.25\",F,8\n";
+  const WeatherSeries q = read_tmy3_csv(write_text("quotes.csv", odd_site + test::kTmy3Header + quoted_record));
+  BOOST_TEST(q.location.name == "O\"HARE \"X\", IL");
+  BOOST_TEST(q.location.latitude_deg == 41.983);
+  BOOST_REQUIRE(q.records.size() == 1u);
+  BOOST_TEST(q.records[0].ghi_Wh_m2 == 12.0);
+  BOOST_TEST(*q.records[0].albedo == 0.25);
+
+  // A quote never closed on its line, or text after a closing quote, names the line and field.
+  struct Case {
+    std::string name, text, message;
+  };
+  const std::vector<Case> cases{
+      {"open_site.csv",
+       "723170,\"GREENSBORO, PIEDMONT TRIAD INT,NC,-5.0,36.100,-79.950,273\n" + std::string(test::kTmy3Header) + record,
+       "open_site.csv:1: field 2 = '\"GREENSBORO, PIEDMONT TRIAD INT,NC,-5.0,…': the quoted field is never closed on its line"},
+      {"after.csv", "723170,\"GREENSBORO\" INT,NC,-5.0,36.100,-79.950,273\n" + std::string(test::kTmy3Header) + record,
+       "after.csv:1: field 2 = '\"GREENSBORO\" INT,NC,-5.0,36.100,-79.950,…': text after the closing quote"},
+      {"open_record.csv", kSite + test::kTmy3Header + "01/01/1990,\"01:00,0\n",
+       "open_record.csv:3: field 2 = '\"01:00,0': the quoted field is never closed on its line"},
+  };
+  for (const Case& c : cases) {
+    const std::string m = error_of([&] { read_tmy3_csv(write_text(c.name, c.text)); });
+    BOOST_TEST(m.find(c.message) != std::string::npos, c.name << ": " << m);
+  }
+}
+
+// An albedo flagged '?' (no known source: TMY3 files write 0.00 so flagged where they have no
+// albedo) or of exactly 0 (no ground reflects nothing) is missing, as one outside [0, 1] is: the
+// ground albedo there is --albedo or the default. One warning line counts them for the file.
+BOOST_AUTO_TEST_CASE(unknown_albedos_are_missing_with_one_warning) {
+  const auto row = [](int hour, const char* albedo, const char* flag) {
+    char b[160];
+    std::snprintf(b, sizeof b, "01/01/1990,%02d:00,0,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,0,1,0,-5.0,A,7,-6,A,7,%s,%s,8\n", hour,
+                  albedo, flag);
+    return std::string(b);
+  };
+  const std::string csv = kSite + test::kTmy3Header + row(1, "0.00", "?") + row(2, "0.17", "?") + row(3, "0.00", "F") +
+                          row(4, "0.17", "F") + row(5, "1.5", "F") + row(6, "-9900", "?") + row(7, "0.170", "E");
+  const fs::path p = write_text("flags.csv", csv);
+  const WeatherSeries s = read_tmy3_csv(p);
+  BOOST_REQUIRE(s.records.size() == 7u);
+  BOOST_TEST(!s.records[0].albedo.has_value());  // 0.00 flagged '?'
+  BOOST_TEST(!s.records[1].albedo.has_value());  // flagged '?': no source, whatever the value
+  BOOST_TEST(!s.records[2].albedo.has_value());  // 0 with a source flag
+  BOOST_TEST(*s.records[3].albedo == 0.17);
+  BOOST_TEST(!s.records[4].albedo.has_value());  // outside [0, 1]
+  BOOST_TEST(!s.records[5].albedo.has_value());  // the missing code: not counted
+  BOOST_TEST(*s.records[6].albedo == 0.17);
+  std::vector<std::string> albedo_lines;
+  for (const auto& w : s.warnings)
+    if (w.find("albedo value(s)") != std::string::npos) albedo_lines.push_back(w);
+  BOOST_REQUIRE_EQUAL(albedo_lines.size(), 1u);
+  const std::string& w = albedo_lines[0];
+  BOOST_TEST(w.find(p.string() + ": 4 albedo value(s) in column 'Alb (unitless)' treated as missing: ") == 0u, w);
+  BOOST_TEST(w.find("2 with source flag '?'") != std::string::npos, w);
+  BOOST_TEST(w.find("1 of 0 (no ground reflects nothing") != std::string::npos, w);
+  BOOST_TEST(w.find("1 outside [0, 1]") != std::string::npos, w);
+  BOOST_TEST(w.find("first on line 3") != std::string::npos, w);
+  BOOST_TEST(w.find("--albedo or the default 0.2") != std::string::npos, w);
+
+  // A whole day of the usual 0.00 '?' gives one line, not one per record.
+  std::string day = kSite + test::kTmy3Header;
+  for (int h = 1; h <= 24; ++h) day += row(h, "0.00", "?");
+  const WeatherSeries d = read_tmy3_csv(write_text("flags_day.csv", day));
+  std::size_t lines = 0;
+  for (const auto& m : d.warnings) lines += m.find("albedo value(s)") != std::string::npos;
+  BOOST_TEST(lines == 1u);
+  BOOST_TEST(d.warnings.size() == 3u);  // that line, the partial year and a day without radiation
 }
