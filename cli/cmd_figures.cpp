@@ -28,6 +28,7 @@
 
 #include "cli/command_registry.h"
 #include "cli/contact_sheet.h"
+#include "cli/number_text.h"
 #include "cli/paper_building.h"
 #include "cli/render_output.h"
 #include "geometry/core/input_error.h"
@@ -62,7 +63,7 @@ void run_figures(const FiguresOptions& o) {
   if (o.bands < 1 || o.bands > 4096) throw InputError("--bands " + std::to_string(o.bands) + ": must be in [1, 4096]");
   if (o.threads < 0 || o.threads > 1024) throw InputError("--threads " + std::to_string(o.threads) + ": must be in [0, 1024]");
   if (!(o.reuse_tolerance >= 0 && o.reuse_tolerance <= 0.5))
-    throw InputError("--reuse-tolerance " + std::to_string(o.reuse_tolerance) + ": must be in [0, 0.5]");
+    throw InputError("--reuse-tolerance " + shortest_text(o.reuse_tolerance) + ": must be in [0, 0.5]");
   const std::filesystem::path dir(o.out);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

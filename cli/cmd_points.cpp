@@ -29,6 +29,7 @@
 #include <memory>
 
 #include "cli/command_registry.h"
+#include "cli/number_text.h"
 #include "cli/point_checks.h"
 #include "cli/point_job_args.h"
 #include "cli/provenance.h"
@@ -61,12 +62,6 @@ struct FacadeArgs {
   bool quiet = false;
 };
 
-std::string shortest(double v) {
-  char b[32];
-  const auto [end, ec] = std::to_chars(b, b + sizeof b, v);
-  return std::string(b, end);
-}
-
 void run_grid(const GridArgs& a) {
   if (a.meshes.empty()) throw InputError("points grid: at least one --mesh FILE is required");
   if (a.out.empty()) throw InputError("points grid: --out FILE.csv is required");
@@ -96,8 +91,8 @@ void run_grid(const GridArgs& a) {
       const std::uint32_t m = t < soup_ref.triangle_material.size() ? soup_ref.triangle_material[t] : 0;
       ground_name = m < soup_ref.material_names.size() ? soup_ref.material_names[m] : "ground";
     }
-    table.rows.push_back({shortest(p.position.x()), shortest(p.position.y()), shortest(p.position.z()), "0", "0", "1",
-                          std::to_string(p.ix), std::to_string(p.iy), ground_name});
+    table.rows.push_back({shortest_text(p.position.x()), shortest_text(p.position.y()), shortest_text(p.position.z()), "0", "0",
+                          "1", std::to_string(p.ix), std::to_string(p.iy), ground_name});
     table.points.push_back({p.position, Vec3(0, 0, 1)});
   }
   write_points_csv(a.out, table, {}, {});
@@ -106,7 +101,7 @@ void run_grid(const GridArgs& a) {
   std::fprintf(stderr,
                "points grid: %zu × %zu nodes at %s m: %zu points %s m above the %s, %zu under or on buildings, %zu where "
                "the model has no ground, %zu dropped by the exact under-a-surface test; wrote %s\n",
-               grid.columns, grid.rows, shortest(a.spacing).c_str(), grid.points.size(), shortest(a.height).c_str(),
+               grid.columns, grid.rows, shortest_text(a.spacing).c_str(), grid.points.size(), shortest_text(a.height).c_str(),
                grid.floor_plane ? "model's lowest z (no ground material: --ground-materials names it)" : "ground",
                grid.under_building, grid.off_ground, grid.dropped_exact, a.out.c_str());
   if (grid.points.empty() && nodes > 0)
@@ -150,8 +145,8 @@ void run_facades(const FacadeArgs& a) {
   for (const FacadePoint& p : fp.points) {
     const std::uint32_t m = p.triangle < soup.triangle_material.size() ? soup.triangle_material[p.triangle] : 0;
     const std::string material = m < soup.material_names.size() ? soup.material_names[m] : "";
-    table.rows.push_back({shortest(p.position.x()), shortest(p.position.y()), shortest(p.position.z()),
-                          shortest(p.normal.x() + 0.0), shortest(p.normal.y() + 0.0), shortest(p.normal.z() + 0.0),
+    table.rows.push_back({shortest_text(p.position.x()), shortest_text(p.position.y()), shortest_text(p.position.z()),
+                          shortest_text(p.normal.x() + 0.0), shortest_text(p.normal.y() + 0.0), shortest_text(p.normal.z() + 0.0),
                           fp.group_names[p.group], p.surface == FacadeSurface::roof ? "roof" : "wall", material,
                           std::to_string(p.triangle), std::to_string(p.iu), std::to_string(p.iv)});
     table.points.push_back({p.position, p.normal});
@@ -163,10 +158,10 @@ void run_facades(const FacadeArgs& a) {
                "sides (party or interior walls), %zu covered by a surface within %s m in front, %zu under the terrain, "
                "%zu in front of the face but inside a building, %zu facing down, %zu undecided; %zu zero-area faces; outward by "
                "the %s; wrote %s\n",
-               fp.centres, shortest(a.spacing).c_str(), fp.faces, fp.points.size(), shortest(a.offset).c_str(), fp.enclosed,
-               fp.covered, shortest(a.offset + 0.01).c_str(), fp.underground, fp.inside, fp.facing_down, fp.undecided,
-               fp.zero_area, fp.groups_are_objects ? "city objects" : "connected components (the model has no objects)",
-               a.out.c_str());
+               fp.centres, shortest_text(a.spacing).c_str(), fp.faces, fp.points.size(), shortest_text(a.offset).c_str(),
+               fp.enclosed, fp.covered, shortest_text(a.offset + 0.01).c_str(), fp.underground, fp.inside, fp.facing_down,
+               fp.undecided, fp.zero_area,
+               fp.groups_are_objects ? "city objects" : "connected components (the model has no objects)", a.out.c_str());
   if (fp.from_winding > 0)
     std::fprintf(stderr,
                  "points facades: warning: %zu points on surfaces open on both sides (no enclosing building found): outward "

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/command_registry.h"
+#include "cli/number_text.h"
 #include "cli/render_output.h"
 #include "geometry/core/input_error.h"
 #include "io/scene_file.h"
@@ -43,7 +44,7 @@ void run_render(const RenderOptions& o) {
   const std::filesystem::path exr(o.out);
   if (exr.extension() != ".exr") throw InputError("--out '" + o.out + "': the file name must end in .exr");
   if (o.o_exposure->count() && !(o.exposure > 0 && std::isfinite(o.exposure)))
-    throw InputError("--exposure " + std::to_string(o.exposure) + ": must be finite and > 0");
+    throw InputError("--exposure " + shortest_text(o.exposure) + ": must be finite and > 0");
   if (o.threads < 0 || o.threads > 1024) throw InputError("--threads " + std::to_string(o.threads) + ": must be in [0, 1024]");
   const SceneDescription desc = load_scene_file(o.scene, o.sets);
   const PinholeCamera camera(desc.camera);

@@ -22,6 +22,7 @@
 
 #include "cli/command_registry.h"
 #include "cli/demo_scene.h"
+#include "cli/number_text.h"
 #include "cli/point_checks.h"
 #include "cli/point_job_args.h"
 #include "cli/provenance.h"
@@ -85,7 +86,7 @@ void run_demo(const SvfArgs& a) {
   const SkyFactorsRun run = compute_sky_factors(scene, pts, opt, a.job.method(), a.job.threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::string bands = run.by_bands == 0   ? ""
-                            : opt.tolerance > 0 ? " (bands: adaptive, tolerance " + std::to_string(opt.tolerance) + ")"
+                            : opt.tolerance > 0 ? " (bands: adaptive, tolerance " + shortest_text(opt.tolerance) + ")"
                                                 : " (bands: " + std::to_string(opt.bands) + " fixed)";
   std::printf("skyband svf --demo: built-in street block (%zu triangles), %zu points; %s%s\n", demo.soup.triangle_count(),
               pts.size(), method_summary(run).c_str(), bands.c_str());

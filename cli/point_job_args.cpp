@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/number_text.h"
 #include "cli/point_checks.h"
 #include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
@@ -48,7 +49,7 @@ VisibilityOptions PointJobArgs::visibility_options() const {
   }
   if (o_tolerance_ && o_tolerance_->count() > 0) {
     if (!(tolerance_ > 0) || !std::isfinite(tolerance_) || tolerance_ >= 1)
-      throw InputError("--tolerance " + std::to_string(tolerance_) + ": must be a number in (0, 1) (absolute SVF error)");
+      throw InputError("--tolerance " + shortest_text(tolerance_) + ": must be a number in (0, 1) (absolute SVF error)");
     opt.tolerance = tolerance_;
   }
   if (threads < 0) throw InputError("--threads " + std::to_string(threads) + ": must be ≥ 0 (0 = all cores)");
@@ -61,7 +62,7 @@ void PointJobArgs::require_files(const std::string& command, const std::string& 
   if (out.empty()) throw InputError(command + ": --out FILE.csv is required");
   check_output_file("--out", out, input_files());
   if (!std::isfinite(offset) || std::abs(offset) > 1000)
-    throw InputError("--offset " + std::to_string(offset) + ": must be a distance in metres within [-1000, 1000]");
+    throw InputError("--offset " + shortest_text(offset) + ": must be a distance in metres within [-1000, 1000]");
 }
 
 std::vector<std::pair<std::string, std::string>> PointJobArgs::input_files() const {
