@@ -72,6 +72,12 @@ std::vector<FaceClass> triangle_classes(const TriangleSoup& soup) {
   for (std::size_t t = 0; t < c.size(); ++t) {
     const std::uint32_t m = t < soup.triangle_material.size() ? soup.triangle_material[t] : 0;
     c[t] = m < of_material.size() ? of_material[m] : FaceClass::by_normal;
+    if (c[t] == FaceClass::wall) {
+      // A wall surface lying flat (a floor or a flat roof labelled as wall) goes by its normal.
+      const auto& tri = soup.triangles[t];
+      const Vec3 n = (soup.vertices[tri[1]] - soup.vertices[tri[0]]).cross(soup.vertices[tri[2]] - soup.vertices[tri[0]]);
+      if (std::abs(n.z()) > kWallMaxNormalZ * n.norm()) c[t] = FaceClass::by_normal;
+    }
   }
   return c;
 }

@@ -16,7 +16,9 @@
 //     normal: a wall when it is within 30° of horizontal (|n_z| ≤ ½), a roof when it points up
 //     more steeply (n_z > ½, Honeybee's default roof angle of 60° from the zenith), else
 //     (floors, undersides) no points. A semantic roof whose outward normal (below) points
-//     down gets no point either: roofs face the sky, so the shell there is defective.
+//     down gets no point either: roofs face the sky, so the shell there is defective. A wall
+//     surface lying flatter than a wall (|n_z| > ½: a floor or a flat roof labelled as wall) goes
+//     by its normal as the other names do.
 //
 // The grid. Each triangle carries a square grid in its own plane: u horizontal along the face,
 // v up the face (v = z on a vertical wall), both measured from the world origin, cell centres

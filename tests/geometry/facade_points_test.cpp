@@ -275,6 +275,27 @@ BOOST_AUTO_TEST_CASE(semantic_classes) {
   for (const FacadePoint& p : fp.points) BOOST_TEST(p.normal == Vec3(0, 0, 1));
 }
 
+// Every face of the 10 × 10 × 6 box labelled WallSurface: the floor and the roof lie flat, so
+// they go by their normals — the floor's 100 centres face down (no point, counted), the roof's
+// 100 are roof points, written only when roofs are asked for; the walls keep their 240.
+BOOST_AUTO_TEST_CASE(flat_wall_surfaces_go_by_their_normal) {
+  TriangleSoup s;
+  s.material_names = {"WallSurface"};
+  add_box(s, 0, 0, 0, 10, 10, 6, BoxFaces{}, 0);
+  const Scene scene(s);
+  FacadePointsOptions o;
+  const FacadePoints walls = make_facade_points(scene, o);
+  BOOST_TEST(walls.points.size() == 240u);
+  BOOST_TEST(walls.facing_down == 0u);  // the floor is not a candidate when only walls are asked for
+  for (const FacadePoint& p : walls.points) BOOST_TEST(p.normal.z() == 0.0);
+  o.roofs = true;
+  const FacadePoints both = make_facade_points(scene, o);
+  BOOST_TEST(both.points.size() == 340u);
+  BOOST_TEST(both.facing_down == 100u);
+  BOOST_TEST(std::count_if(both.points.begin(), both.points.end(), [](const FacadePoint& p) { return p.normal.z() == 1.0; }) ==
+             100);
+}
+
 // A triangle smaller than a cell: a centre in it gives it one point, none otherwise; a wall
 // cut into many triangles (a fan from one corner) still gets each centre once.
 BOOST_AUTO_TEST_CASE(small_and_fanned_triangles) {
