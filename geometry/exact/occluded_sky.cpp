@@ -265,8 +265,8 @@ void OccludedSky::splice(int g, std::size_t lo_piece, std::size_t hi_piece, std:
   }
   // Rebuild the pool when it holds far more than the pieces use.
   if (s.pool.size() > 8 * pieces.size() + 64) {
-    std::vector<std::uint32_t> pool;
-    pool.reserve(4 * pieces.size());
+    std::vector<std::uint32_t>& pool = pool_scratch_;
+    pool.clear();
     for (Piece& q : pieces) {
       if (q.n <= 2) continue;
       const std::uint32_t off = std::uint32_t(pool.size());

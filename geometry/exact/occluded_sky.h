@@ -186,6 +186,7 @@ class OccludedSky {
 
   static const double* const edge_x_;  // unit directions of the bin edges (kBins + 1)
   static const double* const edge_y_;
+  std::vector<std::uint32_t> pool_scratch_;  // a segment's pool being rebuilt (swapped with it)
   std::vector<std::array<double, 2>> circle_;
   std::array<Segment, kCoarseBins> segments_;
   mutable std::array<double, kBins> gmin_{};  // exact minimum of B₁ over each fine bin
