@@ -35,6 +35,7 @@
 #include "geometry/core/input_error.h"
 #include "geometry/mesh/polygon_with_holes_triangulation.h"
 #include "io/citygml_reprojection.h"
+#include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 
 namespace skyband {
@@ -120,37 +121,81 @@ void check_text_lengths(const std::string& name, const std::string& bytes) {
   }
 }
 
-// Every gml:posList / gml:pos must be plain text of 3·n numbers up to its end tag: libcitygml
+// Line numbers of increasing offsets into the file, counted once over the bytes.
+class LineCounter {
+ public:
+  explicit LineCounter(const std::string& bytes) : bytes_(bytes) {}
+  std::size_t at(std::size_t offset) {
+    line_ += static_cast<std::size_t>(std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                                 bytes_.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+    pos_ = offset;
+    return line_;
+  }
+
+ private:
+  const std::string& bytes_;
+  std::size_t pos_ = 0, line_ = 1;
+};
+
+// The coordinate texts libcitygml reads: gml:posList (a ring, a curve: x y z triples), gml:pos
+// (one position: a ring's vertex, an implicit geometry's reference point) and
+// core:transformationMatrix (16 numbers). Each must be plain text up to its end tag: libcitygml
 // keeps only the piece of a text after its last interruption, so a comment, CDATA section,
-// character reference or child element inside a coordinate list would silently cut the ring
-// (measured), and a trailing 1 or 2 numbers are dropped without a word.
+// character reference or child element inside it would silently cut the ring (measured).
+// Every number must be a finite double, parsed as the mesh readers parse theirs
+// (mesh_io::parse_coordinate): libcitygml reads a gml:pos with `stream >> x >> y >> z` and no
+// check, so 1e400 would become 1.8e308, "NaN" a NaN and an empty or garbled pos a vertex at
+// (0, 0, 0), and a matrix stops at its first bad number, silently (measured). The counts are
+// checked too: libcitygml drops a posList's trailing 1 or 2 numbers and reads only the first three
+// of a longer pos. GML 2's gml:coordinates and gml:coord it does not read at all (the ring is
+// dropped): refused.
 void check_coordinate_lists(const std::string& name, const std::string& bytes) {
+  LineCounter lines(bytes);
   for (std::size_t lt = bytes.find('<'); lt != std::string::npos; lt = bytes.find('<', lt + 1)) {
     std::size_t n = lt + 1;
     while (n < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[n])) && bytes[n] != '>' && bytes[n] != '/') ++n;
     const std::string_view qname(bytes.data() + lt + 1, n - lt - 1);
     const std::size_t colon = qname.rfind(':');
     const std::string_view local = colon == std::string_view::npos ? qname : qname.substr(colon + 1);
-    if (local != "posList" && local != "pos") continue;
+    const bool pos_list = local == "posList", pos = local == "pos", matrix = local == "transformationMatrix";
+    const bool gml2 = local == "coordinates" || local == "coord";
+    if (!pos_list && !pos && !matrix && !gml2) continue;
     const std::size_t tag_end = bytes.find('>', n);
-    if (tag_end == std::string::npos || bytes[tag_end - 1] == '/') continue;  // malformed (Xerces says so) or empty
+    if (tag_end == std::string::npos) return;  // malformed: Xerces says where
+    const std::string element = "<" + printable_text(qname) + ">";
+    const std::size_t line = lines.at(lt);
+    auto fail = [&](const std::string& what) {
+      throw InputError(name + ":" + std::to_string(line) + ": " + element + " " + what);
+    };
+    if (gml2) fail("(GML 2 coordinates) is not read by libcitygml 2.4, which would drop its ring: write it as a gml:posList");
+    const std::string expected = pos ? "x y z" : matrix ? "16 numbers (a 4 x 4 matrix)" : "x y z triples";
+    if (bytes[tag_end - 1] == '/') fail("is empty: " + expected + " expected");
     const std::size_t text_end = bytes.find('<', tag_end + 1);
     const std::string end_tag = "</" + std::string(qname);
-    auto fail = [&](const std::string& what) {
-      throw InputError(name + ":" + std::to_string(line_of(bytes, lt)) + ": <" + printable_text(qname) + "> " + what);
-    };
     if (text_end == std::string::npos || bytes.compare(text_end, end_tag.size(), end_tag) != 0)
       fail("holds a comment, CDATA section or element: only plain numbers are read (libcitygml would drop the part before it)");
     const std::string_view text(bytes.data() + tag_end + 1, text_end - tag_end - 1);
     if (text.find('&') != std::string_view::npos)
       fail("holds a character or entity reference: only plain numbers are read (libcitygml would drop the part before it)");
     std::size_t numbers = 0;
+    const std::string what = "coordinate in " + element;
     for (std::size_t i = 0; i < text.size();) {
       while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-      if (i < text.size()) ++numbers;
+      const std::size_t start = i;
       while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      if (i == start) break;
+      ++numbers;
+      const std::size_t offset = static_cast<std::size_t>(text.data() - bytes.data()) + start;
+      double value = 0;
+      const auto [end, ec] = std::from_chars(text.data() + start, text.data() + i, value);
+      // The shared parser throws the error naming the value (and reads a leading '+', valid in xs:double).
+      if (ec != std::errc() || end != text.data() + i || !std::isfinite(value))
+        mesh_io::parse_coordinate(text.substr(start, i - start), name, lines.at(offset), what.c_str());
     }
-    if (numbers % 3 != 0) fail("holds " + std::to_string(numbers) + " numbers, not x y z triples");
+    if (numbers == 0) fail("is empty: " + expected + " expected");
+    if (pos && numbers != 3) fail("holds " + std::to_string(numbers) + " numbers, not x y z");
+    if (pos_list && numbers % 3 != 0) fail("holds " + std::to_string(numbers) + " numbers, not x y z triples");
+    if (matrix && numbers != 16) fail("holds " + std::to_string(numbers) + " numbers, not 16 (a 4 x 4 matrix)");
     lt = text_end;
   }
 }
@@ -284,6 +329,12 @@ std::string location_of(const std::string& message) {
   long line = 0, column = 0;
   if (std::sscanf(message.c_str() + at, "line %ld, column %ld", &line, &column) != 2) return "";
   return std::to_string(line) + ":" + std::to_string(column);
+}
+
+// "file:12:5" with the location of a libcitygml message, "file" when it gives none.
+std::string file_at(const std::string& name, const std::string& message) {
+  const std::string at = location_of(message);
+  return at.empty() ? name : name + ":" + at;
 }
 
 std::string without_file(std::string message) {
@@ -733,10 +784,10 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
     throw InputError(name + (at.empty() ? "" : ":" + at) + ": libcitygml: " + printable_text(what).substr(0, 300));
   }
   if (!logger.bad_coordinates.empty())
-    throw InputError(name + ":" + location_of(logger.bad_coordinates) +
+    throw InputError(file_at(name, logger.bad_coordinates) +
                      ": a coordinate list (gml:posList / gml:pos) holds something that is not a finite number");
   if (!logger.bad_dimension.empty())
-    throw InputError(name + ":" + location_of(logger.bad_dimension) + ": srsDimension is not 3 (only 3D coordinates are read)");
+    throw InputError(file_at(name, logger.bad_dimension) + ": srsDimension is not 3 (only 3D coordinates are read)");
   return model;
 }
 

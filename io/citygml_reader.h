@@ -13,9 +13,15 @@
 //  - no text node (a gml:posList) longer than 1 000 000 bytes: libcitygml keeps only the last
 //    chunk of a text node that Xerces delivers in pieces (measured: texts over 1 MiB lose their
 //    start, the ring is cut mid-number, silently), so such a file is refused with its line;
-//  - every gml:posList / gml:pos is plain text of x y z triples up to its end tag: libcitygml
-//    keeps only the piece after a comment, CDATA section, character reference or child element
-//    inside it, and drops 1 or 2 trailing numbers, silently (measured), so those are refused;
+//  - every gml:posList, gml:pos and core:transformationMatrix (what libcitygml reads as
+//    numbers) is plain text up to its end tag — libcitygml keeps only the piece after a comment,
+//    CDATA section, character reference or child element inside it — of finite doubles
+//    (io/mesh_reader.h's parse_coordinate: no NaN, infinity, overflow beyond ±1.8·10³⁰⁸ or
+//    garbage; libcitygml reads a gml:pos with no check, 1e400 as 1.8·10³⁰⁸, an empty one as
+//    (0, 0, 0)), and whole: x y z triples in a posList (libcitygml drops 1 or 2 trailing
+//    numbers), exactly x y z in a pos, 16 numbers in a matrix, none empty. GML 2's
+//    gml:coordinates and gml:coord, which libcitygml does not read (their ring is dropped), are
+//    refused. Each error names the line and the value;
 //  - the srsName attributes (all of them must name the same EPSG codes);
 //  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
 //    Xerces' message without its line and leaks what it had built, so it only sees
@@ -61,9 +67,10 @@
 //
 // Errors (InputError, one line naming the file, and the line where the XML gives one): missing
 // or unreadable file, not XML or malformed XML (Xerces' message and line:column), not CityGML
-// 1.0/2.0, CityGML 3.0, an over-long text node, a coordinate list that is not numbers or has a
-// srsDimension other than 3, a non-finite coordinate, mixed or geocentric CRSs, a requested LoD
-// that is not a LoD, and a model that gives no triangle.
+// 1.0/2.0, CityGML 3.0, an over-long text node, a coordinate that is not a finite double, a
+// coordinate list or position that is empty, interrupted or not whole, GML 2 coordinates, a
+// srsDimension other than 3, mixed or geocentric CRSs, a requested LoD that is not a LoD, and a
+// model that gives no triangle.
 #include <cstddef>
 #include <filesystem>
 #include <map>

@@ -36,30 +36,18 @@ std::vector<double> svf_column(const fs::path& out) {
   return svf;
 }
 
-// A CityGML 2.0 cube [x0, x0 + 10] × [y0, y0 + 10] × [0, 10] as an LoD 1 solid, in ETRS89 / UTM 32N.
-void write_cube_gml(const fs::path& file, double x0, double y0) {
-  auto p = [&](double x, double y, double z) {
-    std::ostringstream s;
-    s.precision(17);
-    s << x0 + x << " " << y0 + y << " " << z << " ";
-    return s.str();
-  };
-  const std::vector<std::string> faces{p(0, 0, 0) + p(0, 10, 0) + p(10, 10, 0) + p(10, 0, 0) + p(0, 0, 0),
-                                       p(0, 0, 10) + p(10, 0, 10) + p(10, 10, 10) + p(0, 10, 10) + p(0, 0, 10),
-                                       p(0, 0, 0) + p(10, 0, 0) + p(10, 0, 10) + p(0, 0, 10) + p(0, 0, 0),
-                                       p(10, 0, 0) + p(10, 10, 0) + p(10, 10, 10) + p(10, 0, 10) + p(10, 0, 0),
-                                       p(10, 10, 0) + p(0, 10, 0) + p(0, 10, 10) + p(10, 10, 10) + p(10, 10, 0),
-                                       p(0, 10, 0) + p(0, 0, 0) + p(0, 0, 10) + p(0, 10, 10) + p(0, 10, 0)};
-  std::ofstream out(file);
-  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
-         "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" xmlns:gml=\"http://www.opengis.net/gml\">\n"
-         "<core:cityObjectMember><bldg:Building gml:id=\"cube\"><bldg:lod1Solid><gml:Solid srsName=\"EPSG:25832\"><gml:exterior>"
-         "<gml:CompositeSurface>\n";
-  for (const std::string& f : faces)
-    out << "<gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing><gml:posList>" << f
-        << "</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon></gml:surfaceMember>\n";
-  out << "</gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod1Solid></bldg:Building></core:cityObjectMember>\n"
-         "</core:CityModel>\n";
+// The cube of write_cube_citygml with its first ring (on line 4) as gml:pos elements, the first
+// vertex's x written as `x_text` verbatim (so that bad values can be written).
+void write_cube_with_pos(const fs::path& file, const std::string& x_text) {
+  skyband::test::write_cube_citygml(file, 500000, 5400000);
+  std::string text = slurp(file);
+  const std::size_t b = text.find("<gml:posList>"), e = text.find("</gml:posList>");
+  std::istringstream numbers(text.substr(b + 13, e - b - 13));
+  std::string ring, x, y, z;
+  for (bool first = true; numbers >> x >> y >> z; first = false)
+    ring += "<gml:pos>" + (first ? x_text + " " : x + " ") + y + " " + z + "</gml:pos>";
+  text.replace(b, e + 14 - b, ring);
+  std::ofstream(file) << text;
 }
 
 }  // namespace
@@ -69,7 +57,7 @@ void write_cube_gml(const fs::path& file, double x0, double y0) {
 BOOST_AUTO_TEST_CASE(svf_on_a_citygml_cube_closed_form) {
   const fs::path d = skyband::test::test_folder("citygml_cli_cube");
   const double x0 = 500000.5, y0 = 5400000.25;
-  write_cube_gml(d / "cube.gml", x0, y0);
+  skyband::test::write_cube_citygml(d / "cube.gml", x0, y0);
   std::ofstream(d / "pts.csv") << std::fixed << "x,y,z,nx,ny,nz\n"
                                << x0 + 5 << "," << y0 + 5 << ",10,0,0,1\n"
                                << x0 - 20 << "," << y0 + 5 << ",3,-1,0,0\n";
@@ -124,4 +112,37 @@ BOOST_AUTO_TEST_CASE(citygml_3_ends_with_one_error_line, *skyband::test::needs_s
   skyband::test::check_bad_input(
       {{"svf --mesh " + q(gml) + " --points " + q(d / "p.csv") + " --out " + q(d / "o.csv"), "CityGML 3.0 is not supported"}},
       d / "o.csv");
+}
+
+// Every coordinate of a gml:pos is checked as a posList's are: a value that is not a finite
+// double (overflowing, NaN, infinite, garbled) or an empty position ends the run with one line
+// naming the file, the line and the value, exit code 2, and no output.
+BOOST_AUTO_TEST_CASE(bad_gml_pos_values_exit_2_naming_file_line_and_value) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_pos");
+  std::vector<skyband::test::BadInputCase> cases;
+  int k = 0;
+  for (const auto& [value, says] : std::vector<std::pair<std::string, std::string>>{{"1e400", "out of the range of a double"},
+                                                                                    {"-1e999", "out of the range of a double"},
+                                                                                    {"NaN", "non-finite"},
+                                                                                    {"INF", "non-finite"},
+                                                                                    {"1.0abc", "not a number"}}) {
+    const fs::path f = d / ("pos" + std::to_string(k++) + ".gml");
+    write_cube_with_pos(f, value);
+    cases.push_back(
+        {"points grid --mesh " + q(f) + " --spacing 1 --out " + q(d / "p.csv"), f.string() + ":4:", {"'" + value + "'", says}});
+  }
+  const fs::path empty = d / "empty.gml";
+  write_cube_with_pos(empty, "");
+  std::string text = slurp(empty);
+  const std::size_t first = text.find("<gml:pos>");  // "<gml:pos> 5400000 0</gml:pos>" (2 numbers) made empty
+  text.replace(first, text.find("</gml:pos>") - first, "<gml:pos>");
+  std::ofstream(empty) << text;
+  cases.push_back({"points grid --mesh " + q(empty) + " --spacing 1 --out " + q(d / "p.csv"),
+                   empty.string() + ":4:",
+                   {"<gml:pos> is empty"}});
+  skyband::test::check_bad_input(cases, d / "p.csv");
+  // The same cube with a valid value (a leading '+' is valid xs:double) reads.
+  write_cube_with_pos(d / "good.gml", "+500000");
+  const auto r = run_skyband("points grid --mesh " + q(d / "good.gml") + " --spacing 5 --out " + q(d / "p.csv"));
+  BOOST_TEST(r.exit_code == 0, r.err);
 }

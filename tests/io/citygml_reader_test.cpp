@@ -80,6 +80,16 @@ std::string pos_list(const std::vector<Vec3>& ring) {
   return out + "</gml:posList>";
 }
 
+// A polygon whose outer ring is written as one gml:pos per vertex (the first repeated at the end).
+std::string pos_polygon(const std::string& id, const std::vector<Vec3>& ring) {
+  std::string out = "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>";
+  for (std::size_t i = 0; i <= ring.size(); ++i) {
+    const Vec3& p = ring[i % ring.size()];
+    out += "<gml:pos>" + number(p.x()) + " " + number(p.y()) + " " + number(p.z()) + "</gml:pos>";
+  }
+  return out + "</gml:LinearRing></gml:exterior></gml:Polygon>";
+}
+
 std::string polygon(const std::string& id, const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes = {}) {
   std::string out =
       "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>" + pos_list(outer) + "</gml:LinearRing></gml:exterior>";
@@ -397,10 +407,10 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
                  .find("malformed XML") != std::string::npos);
   std::string nan = good;
   nan.replace(nan.find("10.125"), 6, "nan");
-  BOOST_TEST(error_of("nan.gml", nan).find("not a finite number") != std::string::npos);
+  BOOST_TEST(error_of("nan.gml", nan).find("non-finite coordinate in <gml:posList> 'nan'") != std::string::npos);
   std::string overflow = good;
   overflow.replace(overflow.find("10.125"), 6, "1e999");
-  BOOST_TEST(error_of("overflow.gml", overflow).find("not a finite number") != std::string::npos);
+  BOOST_TEST(error_of("overflow.gml", overflow).find("'1e999' is out of the range of a double") != std::string::npos);
   // What libcitygml would cut silently (it keeps the text after the last interruption): refused.
   for (const auto& [label, insert, expect] :
        std::vector<std::array<std::string, 3>>{{"comment.gml", " <!-- a comment --> ", "comment"},
@@ -413,7 +423,9 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   }
   std::string flat = good;
   flat.replace(flat.find("<gml:posList srsDimension=\"3\">"), 30, "<gml:posList srsDimension=\"2\">");
-  BOOST_TEST(error_of("2d.gml", flat).find("srsDimension") != std::string::npos);
+  const std::string flat_error = error_of("2d.gml", flat);
+  BOOST_TEST(flat_error.find(": srsDimension is not 3") != std::string::npos, flat_error);
+  BOOST_TEST(flat_error.find("::") == std::string::npos, flat_error);  // no empty location
   BOOST_TEST(error_of("nothing.gml", document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"/>"))).find("no triangles") !=
              std::string::npos);
   BOOST_TEST(error_of("plain.xml", "<?xml version=\"1.0\"?><root><a/></root>").find("not CityGML 1.0 or 2.0") !=
@@ -438,6 +450,77 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
                       "</bldg:lod1MultiSurface></bldg:Building>"));
   BOOST_TEST(error_of("long.gml", long_text).find("cuts texts over 1 MiB") != std::string::npos);
   BOOST_TEST(input_error([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
+}
+
+// gml:pos, the coordinates libcitygml reads with no check at all, are checked as posList's are
+// (every number a finite double, a whole position, plain text), and so is an implicit geometry's
+// transformationMatrix; GML 2's gml:coordinates, which libcitygml drops, is refused. Each error
+// names the file, the line and the value.
+BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
+  const std::string good = document("2.0", kProjected,
+                                    member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>\n" +
+                                           multi_surface({pos_polygon("g", kBox.ground()), pos_polygon("r", kBox.roof())}) +
+                                           "\n</bldg:lod1MultiSurface></bldg:Building>"));
+  BOOST_TEST(read_citygml(write_file("pos.gml", good)).triangle_count() == 4u);
+  const std::string first = "<gml:pos>" + number(kBox.lo.x());  // the first vertex's x, on line 5
+  auto error_of = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    const fs::path p = write_file(name, text);
+    const std::string e = input_error([&] { read_citygml(p); });
+    BOOST_TEST(e.find(p.string() + ":5: ") == 0u, name << ": " << e);
+    BOOST_TEST(e.find('\n') == std::string::npos);
+    return e;
+  };
+  for (const auto& [value, says] : std::vector<std::pair<std::string, std::string>>{{"1e400", "is out of the range of a double"},
+                                                                                    {"-1e999", "is out of the range of a double"},
+                                                                                    {"1e-400", "is out of the range of a double"},
+                                                                                    {"NaN", "non-finite coordinate"},
+                                                                                    {"-INF", "non-finite coordinate"},
+                                                                                    {"1.0abc", "is not a number"},
+                                                                                    {"1,5", "is not a number"}}) {
+    const std::string e = error_of("pos_bad.gml", first, "<gml:pos>" + value);
+    BOOST_TEST(e.find("'" + value + "'") != std::string::npos, e);
+    BOOST_TEST(e.find(says) != std::string::npos, e);
+    BOOST_TEST(e.find("<gml:pos>") != std::string::npos, e);
+  }
+  const std::string first_pos = good.substr(good.find("<gml:pos>"), good.find("</gml:pos>") + 10 - good.find("<gml:pos>"));
+  BOOST_TEST(error_of("pos_empty.gml", first_pos, "<gml:pos></gml:pos>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_blank.gml", first_pos, "<gml:pos> </gml:pos>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_closed.gml", first_pos, "<gml:pos/>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_short.gml", first_pos, "<gml:pos>1 2</gml:pos>").find("holds 2 numbers, not x y z") !=
+             std::string::npos);
+  BOOST_TEST(error_of("pos_long.gml", first_pos, "<gml:pos>1 2 3 4</gml:pos>").find("holds 4 numbers, not x y z") !=
+             std::string::npos);
+  BOOST_TEST(error_of("pos_list_empty.gml", first_pos, "<gml:posList/>").find("<gml:posList> is empty") != std::string::npos);
+  BOOST_TEST(
+      error_of("coordinates.gml", first_pos, "<gml:coordinates>1,2,3</gml:coordinates>").find("write it as a gml:posList") !=
+      std::string::npos);
+  // A leading '+' is valid xs:double (and read).
+  std::string plus = good;
+  plus.replace(plus.find(first), first.size(), "<gml:pos>+" + number(kBox.lo.x()));
+  BOOST_TEST(read_citygml(write_file("pos_plus.gml", plus)).triangle_count() == 4u);
+
+  // An implicit geometry's matrix: 16 finite numbers.
+  const std::string tree =
+      "<veg:SolitaryVegetationObject gml:id=\"t\"><veg:lod2ImplicitRepresentation><core:ImplicitGeometry>\n"
+      "<core:transformationMatrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</core:transformationMatrix><core:relativeGMLGeometry>" +
+      multi_surface({polygon("p", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)})}) +
+      "</core:relativeGMLGeometry><core:referencePoint><gml:Point><gml:pos>500000 5400000 0</gml:pos></gml:Point>"
+      "</core:referencePoint></core:ImplicitGeometry></veg:lod2ImplicitRepresentation></veg:SolitaryVegetationObject>";
+  const std::string trees = document("2.0", kProjected, member(tree));
+  BOOST_TEST(read_citygml(write_file("tree.gml", trees)).triangle_count() == 1u);
+  for (const auto& [matrix, says] :
+       std::vector<std::pair<std::string, std::string>>{{"1 0 0 0 0 1 0 0 0 0 nan 0 0 0 0 1", "'nan'"},
+                                                        {"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0", "holds 15 numbers, not 16"},
+                                                        {"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1x", "'1x' is not a number"}}) {
+    std::string text = trees;
+    text.replace(text.find("1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"), 31, matrix);
+    const fs::path p = write_file("tree_bad.gml", text);
+    const std::string e = input_error([&] { read_citygml(p); });
+    BOOST_TEST(e.find(p.string() + ":5: ") == 0u, e);
+    BOOST_TEST(e.find(says) != std::string::npos, e);
+  }
 }
 
 // ---- The shared real files -----------------------------------------------------------------
