@@ -13,6 +13,19 @@
 //  - no text node (a gml:posList) longer than 1 000 000 bytes: libcitygml keeps only the last
 //    chunk of a text node that Xerces delivers in pieces (measured: texts over 1 MiB lose their
 //    start, the ring is cut mid-number, silently), so such a file is refused with its line;
+//  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
+//    Xerces' message without its line and leaks what it had built, so it only sees
+//    well-formed XML, and the error names file:line:column;
+//  - Application Domain Extensions: every element of a namespace that is not CityGML's (core
+//    and modules, `http://www.opengis.net/citygml/...`), GML's or xAL's is blanked out with its
+//    content (spaces, line ends kept, so every line keeps its number), and so is the property
+//    left empty by that (the core:cityObjectMember or bldg:boundedBy that held an ADE feature):
+//    libcitygml 2.4 reads elements by local name whatever their namespace (an ADE's own
+//    lod2Solid would be read as CityGML), skips the ones it does not know, and then fails on
+//    the property left without an object ("unbound CityGMLElementParser"). So an ADE subclass
+//    of a CityGML class (a roof surface of an energy ADE) is not read either. The report names
+//    each ADE namespace and its elements; a file of nothing else ends in the "no triangles"
+//    error, naming them;
 //  - every gml:posList, gml:pos and core:transformationMatrix (what libcitygml reads as
 //    numbers) is plain text up to its end tag — libcitygml keeps only the piece after a comment,
 //    CDATA section, character reference or child element inside it — of finite doubles
@@ -22,10 +35,7 @@
 //    numbers), exactly x y z in a pos, 16 numbers in a matrix, none empty. GML 2's
 //    gml:coordinates and gml:coord, which libcitygml does not read (their ring is dropped), are
 //    refused. Each error names the line and the value;
-//  - the srsName attributes (all of them must name the same EPSG codes);
-//  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
-//    Xerces' message without its line and leaks what it had built, so it only sees
-//    well-formed XML, and the error names file:line:column.
+//  - the srsName attributes (all of them must name the same EPSG codes).
 //
 // Reading (libcitygml with tesselation and "optimize" off, so rings arrive as written):
 //  - City objects are libcitygml's CityObjects except thematic surfaces: the boundary surfaces
@@ -49,8 +59,8 @@
 //    instance placed as M·x + reference point (M the row-major 4×4 transformationMatrix, as the
 //    CityJSON reader places geometry instances), at its LoD like any other geometry; not in a
 //    geographic CRS (a template in metres on a reference point in degrees), with a note.
-//  - Not read, and counted in the notes: curves and points, and the elements libcitygml skips
-//    (bldg:lod0FootPrint and lod0RoofEdge, ADE elements), by element name.
+//  - Not read, and counted in the notes: curves and points, the elements libcitygml skips
+//    (bldg:lod0FootPrint and lod0RoofEdge), by element name, and ADE elements (above).
 //
 // Material names (one per triangle): the thematic surface's type (RoofSurface, WallSurface,
 // GroundSurface, ..., Window, Door; traffic areas "TrafficArea" — libcitygml does not tell

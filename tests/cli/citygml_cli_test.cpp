@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -48,6 +49,33 @@ void write_cube_with_pos(const fs::path& file, const std::string& x_text) {
     ring += "<gml:pos>" + (first ? x_text + " " : x + " ") + y + " " + z + "</gml:pos>";
   text.replace(b, e + 14 - b, ring);
   std::ofstream(file) << text;
+}
+
+// A CityGML 2.0 model with `members` (core:cityObjectMember contents) and the namespaces of the
+// building, relief and land-use modules, plus `extra` declarations.
+std::string citygml_document(const std::string& members, const std::string& extra = "") {
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
+         "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" xmlns:dem=\"http://www.opengis.net/citygml/relief/2.0\" "
+         "xmlns:luse=\"http://www.opengis.net/citygml/landuse/2.0\" xmlns:gml=\"http://www.opengis.net/gml\"" +
+         extra + ">\n" + members + "</core:CityModel>\n";
+}
+
+// A closed ring as a gml:posList (the first vertex repeated at the end).
+std::string pos_list(const std::vector<std::array<double, 3>>& ring) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "<gml:posList>";
+  for (std::size_t i = 0; i <= ring.size(); ++i) {
+    const auto& p = ring[i % ring.size()];
+    s << p[0] << " " << p[1] << " " << p[2] << (i < ring.size() ? " " : "");
+  }
+  s << "</gml:posList>";
+  return s.str();
+}
+
+std::string polygon(const std::vector<std::array<double, 3>>& ring, const std::string& element = "gml:Polygon") {
+  return "<" + element + "><gml:exterior><gml:LinearRing>" + pos_list(ring) + "</gml:LinearRing></gml:exterior></" + element +
+         ">";
 }
 
 }  // namespace
@@ -145,4 +173,35 @@ BOOST_AUTO_TEST_CASE(bad_gml_pos_values_exit_2_naming_file_line_and_value) {
   write_cube_with_pos(d / "good.gml", "+500000");
   const auto r = run_skyband("points grid --mesh " + q(d / "good.gml") + " --spacing 5 --out " + q(d / "p.csv"));
   BOOST_TEST(r.exit_code == 0, r.err);
+}
+
+// Elements of an Application Domain Extension are not read: a file that holds nothing else ends
+// with one line naming it and the ADE's namespace (exit 2, no output); a building with an ADE
+// property and an ADE feature beside it is read without them, and the report says so.
+BOOST_AUTO_TEST_CASE(ade_elements_are_skipped_and_an_ade_only_file_is_refused) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_ade");
+  const std::string ns = " xmlns:zone=\"https://example.org/ade/zoning/1.0\"";
+  const std::string area = polygon({{{0, 0, 0}, {50, 0, 0}, {50, 50, 0}, {0, 50, 0}}});
+  std::ofstream(d / "zones.gml") << citygml_document(
+      "<core:cityObjectMember><zone:District gml:id=\"z\"><zone:lod1MultiSurface>"
+      "<gml:MultiSurface><gml:surfaceMember>" +
+          area +
+          "</gml:surfaceMember></gml:MultiSurface></zone:lod1MultiSurface>"
+          "</zone:District></core:cityObjectMember>\n",
+      ns);
+  skyband::test::check_bad_input({{"points grid --mesh " + q(d / "zones.gml") + " --spacing 5 --out " + q(d / "p.csv"),
+                                   (d / "zones.gml").string(),
+                                   {"Application Domain Extension", "https://example.org/ade/zoning/1.0", "zone:District"}}},
+                                 d / "p.csv");
+  // The cube with an ADE property inside the building and the district beside it.
+  skyband::test::write_cube_citygml(d / "cube.gml", 0, 0);
+  std::string cube = slurp(d / "cube.gml");
+  cube.insert(cube.find("<bldg:lod1Solid>"), "<zone:floorArea>120</zone:floorArea>");
+  cube.insert(cube.find("</core:CityModel>"), "<core:cityObjectMember><zone:District gml:id=\"z\"/></core:cityObjectMember>\n");
+  cube.insert(cube.find(" xmlns:gml="), ns);
+  std::ofstream(d / "cube_ade.gml") << cube;
+  const auto r = run_skyband("points grid --mesh " + q(d / "cube_ade.gml") + " --spacing 5 --out " + q(d / "p.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("12 triangles") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("1 x <zone:District>, 1 x <zone:floorArea>") != std::string::npos, r.err);
 }

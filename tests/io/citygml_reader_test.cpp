@@ -103,12 +103,15 @@ std::string multi_surface(const std::vector<std::string>& polygons) {
   return out + "</gml:MultiSurface>";
 }
 
-std::string document(const std::string& version, const std::string& srs, const std::string& members) {
+// `extra`: more namespace declarations on the root (an ADE's).
+std::string document(const std::string& version, const std::string& srs, const std::string& members,
+                     const std::string& extra = "") {
   const std::string ns = "http://www.opengis.net/citygml/";
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"" + ns + version + "\" xmlns:bldg=\"" + ns +
          "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version + "\" xmlns:veg=\"" + ns + "vegetation/" +
-         version +
-         "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">\n"
+         version + "\" xmlns:dem=\"" + ns + "relief/" + version +
+         "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\"" + extra +
+         ">\n"
          "<gml:boundedBy><gml:Envelope srsName=\"" +
          srs +
          "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
@@ -521,6 +524,63 @@ BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
     BOOST_TEST(e.find(p.string() + ":5: ") == 0u, e);
     BOOST_TEST(e.find(says) != std::string::npos, e);
   }
+}
+
+// Application Domain Extensions: their elements are not read (libcitygml would fail on a
+// property whose ADE object it skips, and read an ADE element named like a CityGML one, such as
+// an ADE's own lod2MultiSurface, as CityGML). An ADE subclass of a roof under bldg:boundedBy, an
+// ADE property of the building and an ADE feature of its own are left out; the rest of the
+// building reads, lines keep their numbers, and the report names the ADE and its elements.
+BOOST_AUTO_TEST_CASE(ade_elements_are_not_read_and_named) {
+  const std::string ns = " xmlns:test=\"http://www.example.org/ade/test/1.0\"";
+  std::string building = box_building("b", kBox, false, true);
+  // The roof surface as an ADE class; the solid's xlink to its polygon then finds nothing.
+  const std::size_t roof = building.find("<bldg:RoofSurface");
+  building.replace(roof, 17, "<test:IndustrialRoofSurface");
+  building.replace(building.find("</bldg:RoofSurface>"), 19, "</test:IndustrialRoofSurface>");
+  building.insert(building.find("<bldg:lod2Solid>"), "<test:energy><test:Certificate><test:lod2MultiSurface>" +
+                                                         multi_surface({polygon("adeq", kBox.roof())}) +
+                                                         "</test:lod2MultiSurface></test:Certificate></test:energy>\n");
+  const std::string other = "<test:Thing gml:id=\"thing\"><test:lod2MultiSurface>" +
+                            multi_surface({polygon("adep", kBox.ground())}) + "</test:lod2MultiSurface></test:Thing>";
+  const std::string text = document("2.0", kProjected, member(building) + member(other), ns);
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(write_file("ade.gml", text), {}, &report);
+  const auto areas = area_by_material(s);
+  BOOST_TEST(areas.count("RoofSurface") == 0u);
+  BOOST_TEST(areas.at("GroundSurface") == 200.0, tt::tolerance(1e-9));
+  BOOST_TEST(areas.at("WallSurface") == 298.0, tt::tolerance(1e-9));
+  BOOST_TEST(s.object_names == std::vector<std::string>{"b"});
+  std::string ade_note;
+  for (const std::string& n : report.notes)
+    if (n.find("Application Domain Extension") != std::string::npos) ade_note = n;
+  BOOST_TEST(ade_note.find("http://www.example.org/ade/test/1.0") != std::string::npos, ade_note);
+  BOOST_TEST(ade_note.find("1 x <test:IndustrialRoofSurface>, 1 x <test:Thing>, 1 x <test:energy>") != std::string::npos,
+             ade_note);
+  // Lines keep their numbers after the blanked ADE elements: a bad value after them is found on
+  // its own line.
+  std::string bad = text;
+  bad.replace(bad.rfind("</core:CityModel>"), 17,
+              member("<bldg:Building gml:id=\"c\"><bldg:lod1MultiSurface>\n" + multi_surface({pos_polygon("x", kBox.roof())}) +
+                     "</bldg:lod1MultiSurface></bldg:Building>") +
+                  "</core:CityModel>");
+  bad.replace(bad.rfind("<gml:pos>" + number(kBox.lo.x())), 9 + number(kBox.lo.x()).size(), "<gml:pos>NaN");
+  const fs::path p = write_file("ade_bad.gml", bad);
+  const std::size_t line = 1 + std::count(bad.begin(), bad.begin() + bad.rfind("<gml:pos>NaN"), '\n');
+  const std::string e = input_error([&] { read_citygml(p); });
+  BOOST_TEST(e.find(p.string() + ":" + std::to_string(line) + ": non-finite coordinate") == 0u, e);
+  // A CityGML element libcitygml does not know, alone in its property: one line naming the place.
+  const fs::path unknown = write_file("unknown.gml", document("2.0", kProjected, member("<bldg:Shed gml:id=\"s\"/>")));
+  const std::string u = input_error([&] { read_citygml(unknown); });
+  BOOST_TEST(u.find(unknown.string() + ":4:") == 0u, u);
+  BOOST_TEST(u.find("cannot read the content of <core:cityobjectmember>") != std::string::npos, u);
+  // A file of ADE features alone: one line naming the file and the ADE.
+  const fs::path only = write_file("ade_only.gml", document("2.0", kProjected, member(other), ns));
+  const std::string o = input_error([&] { read_citygml(only); });
+  BOOST_TEST(o.find(only.string() + ": no triangles") == 0u, o);
+  BOOST_TEST(o.find("Application Domain Extensions are not supported") != std::string::npos, o);
+  BOOST_TEST(o.find("http://www.example.org/ade/test/1.0 (1 x <test:Thing>)") != std::string::npos, o);
+  BOOST_TEST(o.find('\n') == std::string::npos);
 }
 
 // ---- The shared real files -----------------------------------------------------------------
