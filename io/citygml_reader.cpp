@@ -542,9 +542,27 @@ std::string surface_type_name(const CityObject& s) {
 }
 
 std::string object_type_name(const CityObject& o) {
-  // libcitygml maps TransportationComplex (and its areas) to one type; at object level it is a complex.
-  if (o.getType() == Type::COT_TransportationObject) return "TransportationComplex";
-  return o.getTypeAsString();
+  switch (o.getType()) {
+    // libcitygml maps TransportationComplex (and its areas) to one type; at object level it is a complex.
+    case Type::COT_TransportationObject:
+      return "TransportationComplex";
+    // Types libcitygml 2.4 parses but names "Unknown" (cityObjectsTypeToString has no case for
+    // them): the relief components (a TINRelief is the terrain of PLATEAU's dem files) and groups.
+    case Type::COT_ReliefComponent:
+      return "ReliefComponent";
+    case Type::COT_TINRelief:
+      return "TINRelief";
+    case Type::COT_MassPointRelief:
+      return "MassPointRelief";
+    case Type::COT_BreaklineRelief:
+      return "BreaklineRelief";
+    case Type::COT_RasterRelief:
+      return "RasterRelief";
+    case Type::COT_CityObjectGroup:
+      return "CityObjectGroup";
+    default:
+      return o.getTypeAsString();
+  }
 }
 
 struct ObjectEntry {

@@ -65,8 +65,11 @@
 // Material names (one per triangle): the thematic surface's type (RoofSurface, WallSurface,
 // GroundSurface, ..., Window, Door; traffic areas "TrafficArea" — libcitygml does not tell
 // auxiliary ones apart; water boundary surfaces "WaterBody"), else the object's type (Building,
-// BuildingPart, TINRelief, LandUse, Road, WaterBody, PlantCover, GenericCityObject, ...). So
-// the terrain classes match default_ground_materials() (lighting/climate/climate_irradiation.h).
+// BuildingPart, TINRelief, LandUse, Road, WaterBody, PlantCover, GenericCityObject, ...; the
+// relief components and CityObjectGroup, which libcitygml 2.4 names "Unknown", by their class:
+// TINRelief, RasterRelief, MassPointRelief, BreaklineRelief). So the terrain classes match
+// default_ground_materials() (lighting/climate/climate_irradiation.h): a PLATEAU dem file's
+// dem:ReliefFeature / dem:TINRelief is ground.
 //
 // Coordinate reference system (the srsName, kept in the report): projected CRSs are read as
 // metres verbatim. Geographic CRSs (PLATEAU's EPSG:6697, 4326, 6668, ...: latitude, longitude,

@@ -205,3 +205,26 @@ BOOST_AUTO_TEST_CASE(ade_elements_are_skipped_and_an_ade_only_file_is_refused) {
   BOOST_TEST(r.err.find("12 triangles") != std::string::npos, r.err);
   BOOST_TEST(r.err.find("1 x <zone:District>, 1 x <zone:floorArea>") != std::string::npos, r.err);
 }
+
+// A TINRelief (dem:ReliefFeature / dem:reliefComponent, as PLATEAU's dem files hold it) is
+// terrain: `points grid` puts its points on it, and only the cube's cells are under a building.
+// 10 × 10 cells of 5 m over [-20, 30]²: the 4 cells of the 10 m cube are left out.
+BOOST_AUTO_TEST_CASE(tin_relief_is_the_ground_of_points_grid) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_relief");
+  skyband::test::write_cube_citygml(d / "cube.gml", 0, 0);
+  std::string text = slurp(d / "cube.gml");
+  const std::string tin =
+      "<core:cityObjectMember><dem:ReliefFeature gml:id=\"relief\"><dem:lod>1</dem:lod><dem:reliefComponent>"
+      "<dem:TINRelief gml:id=\"tin\"><dem:lod>1</dem:lod><dem:tin><gml:TriangulatedSurface><gml:trianglePatches>" +
+      polygon({{{-20, -20, 0}, {30, -20, 0}, {30, 30, 0}}}, "gml:Triangle") +
+      polygon({{{-20, -20, 0}, {30, 30, 0}, {-20, 30, 0}}}, "gml:Triangle") +
+      "</gml:trianglePatches></gml:TriangulatedSurface></dem:tin></dem:TINRelief></dem:reliefComponent></dem:ReliefFeature>"
+      "</core:cityObjectMember>\n";
+  text.insert(text.find("</core:CityModel>"), tin);
+  text.insert(text.find(" xmlns:gml="), " xmlns:dem=\"http://www.opengis.net/citygml/relief/2.0\"");
+  std::ofstream(d / "relief.gml") << text;
+  const auto r = run_skyband("points grid --mesh " + q(d / "relief.gml") + " --spacing 5 --out " + q(d / "p.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("10 × 10 nodes at 5 m: 96 points 0 m above the ground, 4 under or on buildings") != std::string::npos,
+             r.err);
+}

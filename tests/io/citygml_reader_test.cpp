@@ -583,6 +583,31 @@ BOOST_AUTO_TEST_CASE(ade_elements_are_not_read_and_named) {
   BOOST_TEST(o.find('\n') == std::string::npos);
 }
 
+// Relief components, which libcitygml 2.4 types but names "Unknown", carry their class name: a
+// dem:TINRelief inside a dem:ReliefFeature (PLATEAU's dem files) is "TINRelief", a ground material.
+BOOST_AUTO_TEST_CASE(tin_relief_is_named_and_ground) {
+  auto triangle = [](const std::vector<Vec3>& t) {
+    return "<gml:Triangle><gml:exterior><gml:LinearRing>" + pos_list(t) + "</gml:LinearRing></gml:exterior></gml:Triangle>";
+  };
+  const Vec3 o = kBox.lo;
+  const std::string relief =
+      "<dem:ReliefFeature gml:id=\"relief\"><dem:lod>1</dem:lod><dem:reliefComponent><dem:TINRelief gml:id=\"tin\">"
+      "<dem:lod>1</dem:lod><dem:tin><gml:TriangulatedSurface><gml:trianglePatches>" +
+      triangle({o, o + Vec3(100, 0, 0), o + Vec3(100, 100, 0)}) + triangle({o, o + Vec3(100, 100, 0), o + Vec3(0, 100, 0)}) +
+      "</gml:trianglePatches></gml:TriangulatedSurface></dem:tin></dem:TINRelief></dem:reliefComponent></dem:ReliefFeature>";
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(
+      write_file("relief.gml", document("2.0", kProjected, member(relief) + member(box_building("b", kBox)))), {}, &report);
+  const auto areas = area_by_material(s);
+  BOOST_TEST(areas.at("TINRelief") == 1e4, tt::tolerance(1e-9));
+  BOOST_TEST(areas.count("Unknown") == 0u);
+  const std::vector<bool> ground = ground_triangle_mask(s, default_ground_materials());
+  double ground_m2 = 0;
+  for (std::size_t t = 0; t < s.triangle_count(); ++t)
+    if (ground[t]) ground_m2 += area_m2(s, t);
+  BOOST_TEST(ground_m2 == 1e4, tt::tolerance(1e-9));  // the relief, not the building
+}
+
 // ---- The shared real files -----------------------------------------------------------------
 
 BOOST_AUTO_TEST_CASE(citygml_3_is_refused_in_one_line, *test::needs_shared_data()) {
