@@ -189,7 +189,10 @@ void run_sky(const SkyOptions& o) {
     for (const std::string& file : o.meshes) {
       MeshReadReport report;
       soup.append(read_mesh(file, &report));
-      if (!o.json) std::fprintf(stderr, "%s\n", report.summary().c_str());
+      if (!o.json)
+        std::fprintf(stderr, "%s\n", report.summary().c_str());
+      else
+        for (const std::string& w : report.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
     }
     const Scene scene(std::move(soup));
     Spectrum l;

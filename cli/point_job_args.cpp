@@ -93,7 +93,10 @@ TriangleSoup load_meshes(const std::vector<std::string>& files, const std::strin
     MeshReadOptions options;
     if (!lod.empty()) options.lod = lod;
     soup.append(read_mesh(file, &report, options));
-    if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
+    if (!quiet)
+      std::fprintf(stderr, "%s\n", report.summary().c_str());  // warnings included
+    else
+      for (const std::string& w : report.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
     if (reports) reports->push_back(std::move(report));
   }
   return soup;

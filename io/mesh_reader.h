@@ -74,8 +74,15 @@ struct MeshReadReport {
   std::string crs;                        // city models: the CRS as the file names it ("" = none/unknown)
   MeshDefects defects;                    // after welding exactly equal positions
   std::vector<std::string> notes;         // e.g. "OpenMesh dropped 743 faces; read as polygon soup"
-  std::string summary() const;            // a few human-readable lines
+  std::vector<std::string> warnings;      // what is read but likely wrong (see kFarCoordinate_m), one line each
+  std::string summary() const;            // a few human-readable lines (warnings included)
 };
+
+// Vertices farther than this from the origin along any axis are read, with a warning (a
+// corrupt or sentinel value, or the wrong unit): no projected CRS has coordinates beyond
+// ~4·10⁷ m (the Earth's circumference), and there the exact predicates' products of coordinate
+// differences lose the range of a double long before 10³⁰⁸. Metres.
+constexpr double kFarCoordinate_m = 1e8;
 
 struct MeshReadOptions {
   // City models (CityJSON, CityJSONSeq, CityGML): read each object at exactly this LoD ("1.2", "2.2";

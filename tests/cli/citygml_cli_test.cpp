@@ -228,3 +228,18 @@ BOOST_AUTO_TEST_CASE(tin_relief_is_the_ground_of_points_grid) {
   BOOST_TEST(r.err.find("10 × 10 nodes at 5 m: 96 points 0 m above the ground, 4 under or on buildings") != std::string::npos,
              r.err);
 }
+
+// A vertex far beyond any place on Earth (x = 1e300) is read, with a warning on stderr naming the
+// file and the value, printed with --quiet too.
+BOOST_AUTO_TEST_CASE(far_vertices_are_warned_about) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_far");
+  skyband::test::write_cube_citygml(d / "cube.gml", 500000, 5400000);
+  std::string text = slurp(d / "cube.gml");
+  text.replace(text.find("500010 5400000 0"), 16, "1e300 5400000 0");
+  std::ofstream(d / "far.gml") << text;
+  std::ofstream(d / "pts.csv") << "x,y,z\n500005,5400005,11\n";
+  const auto r =
+      run_skyband("svf --mesh " + q(d / "far.gml") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv") + " --quiet");
+  BOOST_TEST(r.err.find("warning: " + (d / "far.gml").string()) != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("1.0000000000000001e+300") != std::string::npos, r.err);
+}

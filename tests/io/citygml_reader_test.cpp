@@ -526,6 +526,22 @@ BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
   }
 }
 
+// A vertex far beyond any place on Earth is read, with a warning in the report naming the file
+// and the value (as for the mesh formats).
+BOOST_AUTO_TEST_CASE(far_vertices_are_read_with_a_warning) {
+  std::string text = document("2.0", kProjected, member(box_building("b", kBox, true, false)));
+  text.replace(text.find(number(kBox.lo.x())), number(kBox.lo.x()).size(), "1e300");
+  const fs::path p = write_file("far.gml", text);
+  MeshReadReport report;
+  read_mesh(p, &report);
+  BOOST_TEST_REQUIRE(report.warnings.size() == 1u);
+  BOOST_TEST(report.warnings[0].find(p.string() + ": 1 vertex with a coordinate beyond") == 0u, report.warnings[0]);
+  BOOST_TEST(report.warnings[0].find("1.0000000000000001e+300") != std::string::npos, report.warnings[0]);
+  BOOST_TEST(report.summary().find("warning: ") != std::string::npos);
+  read_mesh(write_file("near.gml", document("2.0", kProjected, member(box_building("b", kBox)))), &report);
+  BOOST_TEST(report.warnings.empty());
+}
+
 // Application Domain Extensions: their elements are not read (libcitygml would fail on a
 // property whose ADE object it skips, and read an ADE element named like a CityGML one, such as
 // an ADE's own lod2MultiSurface, as CityGML). An ADE subclass of a roof under bldg:boundedBy, an
