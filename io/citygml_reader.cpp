@@ -979,11 +979,13 @@ CrsInfo check_crs(const std::string& name, const FileScan& scan, CityGmlReport& 
 }
 
 // Geographic coordinates → the UTM zone of the model's centre (io/citygml_reprojection.h).
-void project_if_geographic(const std::string& name, const CrsInfo& info, RawSurfaces& raw, CityGmlReport& report) {
-  if (info.kind != CrsKind::geographic) return;
-  const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates);
+void project_if_geographic(const std::string& name, const CrsInfo& info, std::optional<UtmZone> shared, RawSurfaces& raw,
+                           CityGmlReport& report) {
+  if (info.kind != CrsKind::geographic || raw.coordinates.empty()) return;
+  const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates, shared);
   report.crs = r.target_crs;
   report.reprojection = r.description;
+  report.utm_zone = r.zone;
 }
 
 TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlReadOptions& options, CityGmlReport* report) {
@@ -1010,7 +1012,7 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   Notes notes;
   const CrsInfo crs = check_crs(name, scan, r);
   ModelWalk(name, requested, options.lod.has_value(), crs.kind != CrsKind::geographic, soup, raw, counts, notes).read(*model);
-  project_if_geographic(name, crs, raw, r);
+  project_if_geographic(name, crs, options.utm_zone, raw, r);
   triangulate_surfaces(raw, soup, counts, notes);
 
   r.objects = counts.objects;

@@ -74,8 +74,10 @@
 // Coordinate reference system (the srsName, kept in the report): projected CRSs are read as
 // metres verbatim. Geographic CRSs (PLATEAU's EPSG:6697, 4326, 6668, ...: latitude, longitude,
 // height) are projected to the UTM zone of the model's centre by PROJ
-// (io/citygml_reprojection.h: JGD2011 / UTM zone 54N, EPSG:6691, for Tokyo); heights are kept
-// as in the file, and the report says in which CRS the output is and what the heights are.
+// (io/citygml_reprojection.h: JGD2011 / UTM zone 54N, EPSG:6691, for Tokyo), or to the zone
+// given in the options (that of models read before, where it is this one's or a neighbour);
+// heights are kept as in the file, and the report says in which CRS the output is and what the
+// heights are.
 // Geocentric CRSs are refused (z is not up). A file without srsName is read as metres with a note.
 //
 // Errors (InputError, one line naming the file, and the line where the XML gives one): missing
@@ -92,11 +94,15 @@
 #include <vector>
 
 #include "geometry/mesh/triangle_soup.h"
+#include "io/citygml_reprojection.h"
 
 namespace skyband {
 
 struct CityGmlReadOptions {
   std::optional<std::string> lod;  // "2" (or "2.0"); unset: per object the highest it has
+  // Geographic CRSs: the UTM zone of models read before, shared when this model's own zone is
+  // that one or a neighbour (io/citygml_reprojection.h); unset: the zone of the model's centre.
+  std::optional<UtmZone> utm_zone;
 };
 
 struct CityGmlReport {
@@ -105,6 +111,7 @@ struct CityGmlReport {
   std::string crs_in_file;                // the srsName verbatim, "" if none
   std::string crs;                        // the CRS of the output: crs_in_file, or the UTM CRS reprojected to
   std::string reprojection;               // "" when not reprojected, else what was done (one line)
+  std::optional<UtmZone> utm_zone;        // when reprojected: the zone used
   std::size_t objects = 0;                // city objects (thematic surfaces not counted)
   std::size_t objects_with_geometry = 0;  // objects that gave at least one surface
   std::size_t skipped_objects = 0;        // objects with geometry of which nothing was read

@@ -289,6 +289,7 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
   CityGmlReport c;
   CityGmlReadOptions city;
   city.lod = options.lod;
+  city.utm_zone = options.utm_zone;
   TriangleSoup soup = read_citygml(file, city, &c);
   if (report) {
     MeshReadReport r;
@@ -298,6 +299,7 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
                            : std::string("libcitygml 2.4 + skyband CityGML reader (each object at its highest LoD)");
     r.vertices_in_file = c.vertices;
     r.crs = c.crs;
+    r.utm_zone = c.utm_zone;
     r.faces_in_file = r.faces_read = c.surfaces;
     r.triangles = c.triangles;
     r.polygons_triangulated = c.surfaces;

@@ -229,6 +229,58 @@ BOOST_AUTO_TEST_CASE(tin_relief_is_the_ground_of_points_grid) {
              r.err);
 }
 
+// Models given together must share one CRS: two cubes in ETRS89 / UTM 32N and RD New end with one
+// line naming both files and both CRSs (exit 2, no output), for every command that reads meshes;
+// the same CRS spelled two ways, or a mesh without a CRS, joins.
+BOOST_AUTO_TEST_CASE(models_in_different_crss_are_refused) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_crs_mix");
+  skyband::test::write_cube_citygml(d / "utm.gml", 500000, 5400000, "EPSG:25832");
+  skyband::test::write_cube_citygml(d / "rd.gml", 500020, 5400000, "urn:ogc:def:crs:EPSG::28992");
+  skyband::test::write_cube_citygml(d / "utm_urn.gml", 500040, 5400000, "urn:ogc:def:crs:EPSG::25832");
+  skyband::test::write_cube_obj(d / "cube.obj");
+  std::ofstream(d / "pts.csv") << "x,y,z\n500005,5400005,11\n";
+  const std::string two = " --mesh " + q(d / "utm.gml") + " --mesh " + q(d / "rd.gml");
+  const std::vector<std::string> both{(d / "rd.gml").string(), "urn:ogc:def:crs:EPSG::28992", "EPSG:25832", "different CRSs"};
+  skyband::test::check_bad_input(
+      {{"points grid" + two + " --spacing 5 --out " + q(d / "o.csv"), (d / "utm.gml").string(), both},
+       {"svf" + two + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"), (d / "utm.gml").string(), both},
+       {"points facades" + two + " --spacing 5 --out " + q(d / "o.csv"), (d / "utm.gml").string(), both}},
+      d / "o.csv");
+  skyband::test::check_bad_input({{"map" + two + " --spacing 5 --out " + q(d / "o.tif"), (d / "utm.gml").string(), both}},
+                                 d / "o.tif");
+  const auto r = run_skyband("svf --mesh " + q(d / "utm.gml") + " --mesh " + q(d / "utm_urn.gml") + " --mesh " +
+                             q(d / "cube.obj") + " --points " + q(d / "pts.csv") + " --out " + q(d / "o.csv"));
+  BOOST_TEST(r.exit_code == 0, r.err);
+}
+
+// Two geographic (JGD2011, EPSG:6668) land-use tiles on both sides of the boundary of UTM zones
+// 53 and 54 (138° E) are projected to one zone, the first one's, so they join in one CRS.
+BOOST_AUTO_TEST_CASE(geographic_tiles_across_a_utm_zone_boundary_share_a_zone) {
+  const fs::path d = skyband::test::test_folder("citygml_cli_zones");
+  auto tile = [&](const fs::path& f, double lon0) {
+    const std::string area =
+        polygon({{{35.0, lon0, 10}, {35.0, lon0 + 0.0005, 10}, {35.0005, lon0 + 0.0005, 10}, {35.0005, lon0, 10}}});
+    std::ofstream(f) << citygml_document(
+        "<core:cityObjectMember><luse:LandUse gml:id=\"l\"><luse:lod1MultiSurface>"
+        "<gml:MultiSurface srsName=\"EPSG:6668\"><gml:surfaceMember>" +
+        area +
+        "</gml:surfaceMember></gml:MultiSurface></luse:lod1MultiSurface></luse:LandUse>"
+        "</core:cityObjectMember>\n");
+  };
+  tile(d / "west.gml", 137.9994);
+  tile(d / "east.gml", 138.0001);
+  const auto r = run_skyband("points grid --mesh " + q(d / "west.gml") + " --mesh " + q(d / "east.gml") + " --spacing 10 --out " +
+                             q(d / "p.csv"));
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("EPSG:6691") == std::string::npos, r.err);  // zone 54N: not used
+  BOOST_TEST(r.err.find("the zone of the models read before it") != std::string::npos, r.err);
+  // The other order: both in zone 54.
+  const auto e = run_skyband("points grid --mesh " + q(d / "east.gml") + " --mesh " + q(d / "west.gml") + " --spacing 10 --out " +
+                             q(d / "p.csv"));
+  BOOST_TEST_REQUIRE(e.exit_code == 0, e.err);
+  BOOST_TEST(e.err.find("EPSG:6690") == std::string::npos, e.err);  // zone 53N: not used
+}
+
 // A vertex far beyond any place on Earth (x = 1e300) is read, with a warning on stderr naming the
 // file and the value, printed with --quiet too.
 BOOST_AUTO_TEST_CASE(far_vertices_are_warned_about) {

@@ -624,6 +624,39 @@ BOOST_AUTO_TEST_CASE(tin_relief_is_named_and_ground) {
   BOOST_TEST(ground_m2 == 1e4, tt::tolerance(1e-9));  // the relief, not the building
 }
 
+// Geographic models read together share a UTM zone: tiles on both sides of 138° E (zones 53 and
+// 54) are both projected to the zone given, the first one's, checked against the Krüger series;
+// a model two zones away keeps its own (and the caller reports the different CRS).
+BOOST_AUTO_TEST_CASE(geographic_models_share_the_utm_zone_given) {
+  auto tile = [&](const std::string& name, double lon) {
+    const Box b{Vec3(35.0, lon, 5), 0.0004, 0.0004, 10};  // latitude, longitude, height (EPSG:6668)
+    return write_file(name, document("2.0", "EPSG:6668", member(box_building("b", b))));
+  };
+  const fs::path west = tile("west.gml", 137.9994), east = tile("east.gml", 138.0002), far = tile("far.gml", 150.5);
+  CityGmlReport w, e, f;
+  const TriangleSoup ws = read_citygml(west, {}, &w);
+  BOOST_TEST_REQUIRE(w.utm_zone.has_value());
+  BOOST_TEST(w.utm_zone->number == 53);
+  BOOST_TEST(w.crs == "EPSG:6690");
+  CityGmlReadOptions shared;
+  shared.utm_zone = w.utm_zone;
+  const TriangleSoup es = read_citygml(east, shared, &e);
+  BOOST_TEST(e.crs == "EPSG:6690");
+  BOOST_TEST((e.utm_zone == w.utm_zone));
+  BOOST_TEST(e.reprojection.find("the zone of the models read before it") != std::string::npos, e.reprojection);
+  // The east tile's south-west corner, projected to zone 53 by the series, is a vertex within 1 µm.
+  const Vec3 en = utm_forward(35.0, 138.0002, 53);
+  double best = 1e30;
+  for (const Vec3& v : es.vertices) best = std::min(best, std::hypot(v.x() - en.x(), v.y() - en.y()));
+  BOOST_TEST(best < 1e-6);
+  BOOST_TEST(read_citygml(east, {}, &e).vertices.size() == es.vertices.size());
+  BOOST_TEST(e.crs == "EPSG:6691");  // alone: its own zone, 54
+  read_citygml(far, shared, &f);
+  BOOST_TEST(f.utm_zone->number == 56);
+  BOOST_TEST(f.crs == "EPSG:6693");
+  BOOST_TEST(ws.triangle_count() > 0u);
+}
+
 // ---- The shared real files -----------------------------------------------------------------
 
 BOOST_AUTO_TEST_CASE(citygml_3_is_refused_in_one_line, *test::needs_shared_data()) {
