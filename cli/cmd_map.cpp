@@ -15,14 +15,17 @@
 // Every value is exact (the exact horizon where the scene allows it, the exact union elsewhere).
 //
 // Output: a single-band Float32 GeoTIFF (nodata −9999) in the model's CRS (the city model's
-// referenceSystem, the DSM's own, or --crs), written atomically, with the quantity, its units
+// referenceSystem or the DSM's own; --crs names it for an input that names none, and is refused
+// when it differs from the input's: it labels, it does not reproject), written atomically, with the quantity, its units
 // and the command line in its metadata and a provenance record beside it; with --png a
 // false-colour picture with a legend (cli/map_picture.h).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 #include "cli/command_registry.h"
 #include "cli/map_picture.h"
@@ -36,6 +39,7 @@
 #include "io/geo_raster.h"
 #include "io/mesh_reader.h"
 #include "io/png_writer.h"
+#include "io/utf8_text.h"
 #include "lighting/climate/climate_irradiation.h"
 
 namespace skyband::cli {
@@ -82,6 +86,7 @@ void check_args(const MapArgs& a) {
   if (!a.meshes.empty() && (!std::isfinite(a.spacing) || !(a.spacing > 0)))
     throw InputError("map: --spacing S (metres, > 0) is required with --mesh");
   if (a.threads < 0) throw InputError("map: --threads " + std::to_string(a.threads) + ": give 0 (all cores) or more");
+  if (!a.crs.empty()) crs_wkt_of(a.crs, "--crs");  // known to GDAL, and projected: before any input is read
   std::vector<std::pair<std::string, std::string>> inputs;
   for (const std::string& m : a.meshes) inputs.emplace_back("--mesh", m);
   if (!a.dsm.empty()) inputs.emplace_back("--dsm", a.dsm);
@@ -100,18 +105,23 @@ std::vector<std::pair<std::string, std::string>> input_files(const MapArgs& a) {
   return inputs;
 }
 
-// The city model's CRS: the first file's that names one (a warning when files disagree).
-std::string model_crs(const std::vector<MeshReadReport>& reports) {
-  std::string crs;
-  for (const MeshReadReport& r : reports) {
-    if (r.crs.empty()) continue;
-    if (crs.empty())
-      crs = r.crs;
-    else if (r.crs != crs)
-      std::fprintf(stderr, "map: warning: %s is in %s, the map in %s (the first file's)\n", r.file.c_str(), r.crs.c_str(),
-                   crs.c_str());
-  }
-  return crs;
+// --crs names the CRS of the output and never reprojects: with an input that names a CRS, it must
+// be that CRS (a map labelled with another one is a silent wrong answer in any GIS), else
+// InputError saying what to do. An input that names none takes it; one whose CRS GDAL does not
+// know takes it with a warning.
+// `input_crs` as same_crs takes it (a name or WKT), `label` as the message shows it.
+void check_crs_option(const std::string& crs, const std::string& input_crs, const std::string& label,
+                      const std::string& input_file, bool dsm) {
+  if (crs.empty() || input_crs.empty()) return;
+  const std::optional<bool> same = same_crs(crs, input_crs);
+  if (same == false)
+    throw InputError("map: --crs " + printable_text(crs) + " is not the CRS of " + input_file + " (" + label +
+                     "): --crs labels the map, it does not reproject; drop --crs (the map is then in the input's CRS) or " +
+                     (dsm ? "reproject the DSM first (gdalwarp -t_srs " + printable_text(crs) + ")"
+                          : std::string("reproject the model first")));
+  if (!same)
+    std::fprintf(stderr, "map: warning: %s names the CRS %s, which GDAL does not know: the map is labelled --crs %s as given\n",
+                 input_file.c_str(), label.c_str(), printable_text(crs).c_str());
 }
 
 MapGrid grid_from_model(const MapArgs& a, std::unique_ptr<Scene>& scene) {
@@ -124,6 +134,10 @@ MapGrid grid_from_model(const MapArgs& a, std::unique_ptr<Scene>& scene) {
   }
   std::vector<MeshReadReport> reports;
   scene = std::make_unique<Scene>(load_meshes(a.meshes, a.lod, a.quiet, &reports));
+  // The files share one CRS (load_meshes refuses others): the first that names one names it.
+  const auto named = std::find_if(reports.begin(), reports.end(), [](const MeshReadReport& r) { return !r.crs.empty(); });
+  const std::string model_crs = named == reports.end() ? "" : named->crs;
+  if (named != reports.end()) check_crs_option(a.crs, model_crs, printable_text(model_crs), named->file, false);
   const GroundGrid grid = make_ground_grid(*scene, ground_triangle_mask(scene->soup(), a.ground_materials), opt);
   MapGrid m;
   m.columns = grid.columns;
@@ -136,7 +150,7 @@ MapGrid grid_from_model(const MapArgs& a, std::unique_ptr<Scene>& scene) {
     m.points.push_back({p.position, Vec3(0, 0, 1)});
     m.pixel.push_back(r * m.columns + c);
   }
-  const std::string crs = a.crs.empty() ? model_crs(reports) : a.crs;
+  const std::string crs = a.crs.empty() ? model_crs : a.crs;
   if (!crs.empty()) {
     m.crs_wkt = crs_wkt_of(crs, a.crs.empty() ? "the model's referenceSystem" : "--crs");
     m.crs_name = crs;
@@ -151,6 +165,7 @@ MapGrid grid_from_dsm(const MapArgs& a, std::unique_ptr<Scene>& scene) {
   // The pixel columns cost ~4.5 kB a pixel (~7 triangles with their BVH and classification, on
   // a rough DSM): 4 million pixels (2000²) fill ~18 GB. Larger rasters are refused up front.
   const GeoRaster dsm = read_geo_raster(a.dsm, kMaxDsmPixels);
+  check_crs_option(a.crs, dsm.crs_wkt, dsm.crs_name.empty() ? "a CRS without a name" : printable_text(dsm.crs_name), a.dsm, true);
   HeightField f;
   f.columns = dsm.columns;
   f.rows = dsm.rows;
@@ -271,7 +286,9 @@ CommandRegistration registration{
           ->delimiter(',');
       cmd->add_option("--lod", args->lod, "With --mesh: read city models at this LoD (default: each object's highest)");
       cmd->add_option("--quantity", args->quantity, "svf (default) or sky_exposure");
-      cmd->add_option("--crs", args->crs, "CRS of the output (EPSG:n, WKT, ...; default: the model's or the DSM's own)");
+      cmd->add_option("--crs", args->crs,
+                      "CRS of the output (EPSG:n, WKT, ...) for an input that names none; it labels, it does not\n"
+                      "reproject, so it must be the input's own CRS when the input names one (default: that one)");
       cmd->add_option("--out", args->out, "Output GeoTIFF (Float32, nodata -9999), written atomically");
       cmd->add_option("--png", args->png, "Also a false-colour PNG with a legend");
       cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)");

@@ -39,6 +39,7 @@
 #include "io/exr_writer.h"
 #include "io/mesh_reader.h"
 #include "io/png_writer.h"
+#include "io/scene_crs.h"
 #include "lighting/sky/sky_model.h"
 #include "lighting/spectrum/colour.h"
 
@@ -186,10 +187,16 @@ void run_sky(const SkyOptions& o) {
   // --- image -------------------------------------------------------------------------------
   if (at) {
     TriangleSoup soup;
+    SceneCrs crs;
     for (const std::string& file : o.meshes) {
       MeshReadReport report;
-      soup.append(read_mesh(file, &report));
-      if (!o.json) std::fprintf(stderr, "%s\n", report.summary().c_str());
+      TriangleSoup part = read_mesh(file, &report, crs.next({}));
+      crs.add(report);
+      soup.append(part);
+      if (!o.json)
+        std::fprintf(stderr, "%s\n", report.summary().c_str());
+      else
+        for (const std::string& w : report.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
     }
     const Scene scene(std::move(soup));
     Spectrum l;

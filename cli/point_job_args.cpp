@@ -10,6 +10,7 @@
 #include "cli/point_checks.h"
 #include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/scene_crs.h"
 
 namespace skyband::cli {
 
@@ -89,12 +90,18 @@ TriangleSoup PointJobArgs::load_meshes() const {
 TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
                          std::vector<MeshReadReport>* reports) {
   TriangleSoup soup;
+  MeshReadOptions options;
+  if (!lod.empty()) options.lod = lod;
+  SceneCrs crs;
   for (const std::string& file : files) {
     MeshReadReport report;
-    MeshReadOptions options;
-    if (!lod.empty()) options.lod = lod;
-    soup.append(read_mesh(file, &report, options));
-    if (!quiet) std::fprintf(stderr, "%s\n", report.summary().c_str());
+    TriangleSoup part = read_mesh(file, &report, crs.next(options));
+    crs.add(report);
+    soup.append(part);
+    if (!quiet)
+      std::fprintf(stderr, "%s\n", report.summary().c_str());  // warnings included
+    else
+      for (const std::string& w : report.warnings) std::fprintf(stderr, "skyband: warning: %s\n", w.c_str());
     if (reports) reports->push_back(std::move(report));
   }
   return soup;

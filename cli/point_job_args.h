@@ -61,8 +61,9 @@ class PointJobArgs {
 };
 
 // Mesh and city-model files appended in order into one soup, each read at `lod` ("" = each
-// object's highest), each file's read report on stderr unless `quiet`, and kept in `reports`
-// when given (the CRS of a city model is in its report).
+// object's highest), each file's read report on stderr unless `quiet` (its warnings always), and
+// kept in `reports` when given (the CRS of a city model is in its report). The files must share
+// one CRS (io/scene_crs.h): InputError naming two files in different CRSs.
 TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
                          std::vector<MeshReadReport>* reports = nullptr);
 

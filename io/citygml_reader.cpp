@@ -35,6 +35,7 @@
 #include "geometry/core/input_error.h"
 #include "geometry/mesh/polygon_with_holes_triangulation.h"
 #include "io/citygml_reprojection.h"
+#include "io/mesh_reader.h"
 #include "io/utf8_text.h"
 
 namespace skyband {
@@ -120,37 +121,81 @@ void check_text_lengths(const std::string& name, const std::string& bytes) {
   }
 }
 
-// Every gml:posList / gml:pos must be plain text of 3·n numbers up to its end tag: libcitygml
+// Line numbers of increasing offsets into the file, counted once over the bytes.
+class LineCounter {
+ public:
+  explicit LineCounter(const std::string& bytes) : bytes_(bytes) {}
+  std::size_t at(std::size_t offset) {
+    line_ += static_cast<std::size_t>(std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                                 bytes_.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+    pos_ = offset;
+    return line_;
+  }
+
+ private:
+  const std::string& bytes_;
+  std::size_t pos_ = 0, line_ = 1;
+};
+
+// The coordinate texts libcitygml reads: gml:posList (a ring, a curve: x y z triples), gml:pos
+// (one position: a ring's vertex, an implicit geometry's reference point) and
+// core:transformationMatrix (16 numbers). Each must be plain text up to its end tag: libcitygml
 // keeps only the piece of a text after its last interruption, so a comment, CDATA section,
-// character reference or child element inside a coordinate list would silently cut the ring
-// (measured), and a trailing 1 or 2 numbers are dropped without a word.
+// character reference or child element inside it would silently cut the ring (measured).
+// Every number must be a finite double, parsed as the mesh readers parse theirs
+// (mesh_io::parse_coordinate): libcitygml reads a gml:pos with `stream >> x >> y >> z` and no
+// check, so 1e400 would become 1.8e308, "NaN" a NaN and an empty or garbled pos a vertex at
+// (0, 0, 0), and a matrix stops at its first bad number, silently (measured). The counts are
+// checked too: libcitygml drops a posList's trailing 1 or 2 numbers and reads only the first three
+// of a longer pos. GML 2's gml:coordinates and gml:coord it does not read at all (the ring is
+// dropped): refused.
 void check_coordinate_lists(const std::string& name, const std::string& bytes) {
+  LineCounter lines(bytes);
   for (std::size_t lt = bytes.find('<'); lt != std::string::npos; lt = bytes.find('<', lt + 1)) {
     std::size_t n = lt + 1;
     while (n < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[n])) && bytes[n] != '>' && bytes[n] != '/') ++n;
     const std::string_view qname(bytes.data() + lt + 1, n - lt - 1);
     const std::size_t colon = qname.rfind(':');
     const std::string_view local = colon == std::string_view::npos ? qname : qname.substr(colon + 1);
-    if (local != "posList" && local != "pos") continue;
+    const bool pos_list = local == "posList", pos = local == "pos", matrix = local == "transformationMatrix";
+    const bool gml2 = local == "coordinates" || local == "coord";
+    if (!pos_list && !pos && !matrix && !gml2) continue;
     const std::size_t tag_end = bytes.find('>', n);
-    if (tag_end == std::string::npos || bytes[tag_end - 1] == '/') continue;  // malformed (Xerces says so) or empty
+    if (tag_end == std::string::npos) return;  // malformed: Xerces says where
+    const std::string element = "<" + printable_text(qname) + ">";
+    const std::size_t line = lines.at(lt);
+    auto fail = [&](const std::string& what) {
+      throw InputError(name + ":" + std::to_string(line) + ": " + element + " " + what);
+    };
+    if (gml2) fail("(GML 2 coordinates) is not read by libcitygml 2.4, which would drop its ring: write it as a gml:posList");
+    const std::string expected = pos ? "x y z" : matrix ? "16 numbers (a 4 x 4 matrix)" : "x y z triples";
+    if (bytes[tag_end - 1] == '/') fail("is empty: " + expected + " expected");
     const std::size_t text_end = bytes.find('<', tag_end + 1);
     const std::string end_tag = "</" + std::string(qname);
-    auto fail = [&](const std::string& what) {
-      throw InputError(name + ":" + std::to_string(line_of(bytes, lt)) + ": <" + printable_text(qname) + "> " + what);
-    };
     if (text_end == std::string::npos || bytes.compare(text_end, end_tag.size(), end_tag) != 0)
       fail("holds a comment, CDATA section or element: only plain numbers are read (libcitygml would drop the part before it)");
     const std::string_view text(bytes.data() + tag_end + 1, text_end - tag_end - 1);
     if (text.find('&') != std::string_view::npos)
       fail("holds a character or entity reference: only plain numbers are read (libcitygml would drop the part before it)");
     std::size_t numbers = 0;
+    const std::string what = "coordinate in " + element;
     for (std::size_t i = 0; i < text.size();) {
       while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
-      if (i < text.size()) ++numbers;
+      const std::size_t start = i;
       while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+      if (i == start) break;
+      ++numbers;
+      const std::size_t offset = static_cast<std::size_t>(text.data() - bytes.data()) + start;
+      double value = 0;
+      const auto [end, ec] = std::from_chars(text.data() + start, text.data() + i, value);
+      // The shared parser throws the error naming the value (and reads a leading '+', valid in xs:double).
+      if (ec != std::errc() || end != text.data() + i || !std::isfinite(value))
+        mesh_io::parse_coordinate(text.substr(start, i - start), name, lines.at(offset), what.c_str());
     }
-    if (numbers % 3 != 0) fail("holds " + std::to_string(numbers) + " numbers, not x y z triples");
+    if (numbers == 0) fail("is empty: " + expected + " expected");
+    if (pos && numbers != 3) fail("holds " + std::to_string(numbers) + " numbers, not x y z");
+    if (pos_list && numbers % 3 != 0) fail("holds " + std::to_string(numbers) + " numbers, not x y z triples");
+    if (matrix && numbers != 16) fail("holds " + std::to_string(numbers) + " numbers, not 16 (a 4 x 4 matrix)");
     lt = text_end;
   }
 }
@@ -190,9 +235,145 @@ FileScan scan_bytes(const std::string& name, const std::string& bytes) {
                      "> declares neither http://www.opengis.net/citygml/2.0 nor http://www.opengis.net/citygml/1.0");
   }
   check_text_lengths(name, bytes);
-  check_coordinate_lists(name, bytes);
-  scan.srs_names = srs_names(bytes);
   return scan;
+}
+
+// ---- Application Domain Extensions ---------------------------------------------------------
+
+// Namespaces of CityGML 1.0/2.0 itself (core and every module), GML and xAL; elements of any
+// other namespace belong to an Application Domain Extension.
+bool is_citygml_namespace(std::string_view uri) {
+  return uri.starts_with("http://www.opengis.net/citygml/") || uri.starts_with("http://www.opengis.net/gml") ||
+         uri == "urn:oasis:names:tc:ciq:xsdschema:xAL:2.0";
+}
+
+// The ADE elements blanked out of the file (the outermost ones), by namespace.
+struct AdeNamespace {
+  std::string uri;
+  std::map<std::string, std::size_t> elements;  // qname → count
+  // "2 x <test:A>, 1 x <test:B>" (at most `kinds` element names, then "...").
+  std::string list(std::size_t kinds) const {
+    std::string out;
+    std::size_t k = 0;
+    for (const auto& [qname, n] : elements) {
+      if (k++ == kinds) return out + ", ...";
+      out += (out.empty() ? "" : ", ") + std::to_string(n) + " x <" + printable_text(qname) + ">";
+    }
+    return out;
+  }
+};
+using AdeElements = std::vector<AdeNamespace>;  // in order of appearance
+
+// Blanks out (every byte but line ends replaced by a space, so lines and columns stay) each
+// outermost element of an ADE namespace, with its content, and then each element left with no
+// content by that (no child element, no text, no attribute: the property, such as a
+// core:cityObjectMember or bldg:boundedBy, that held an ADE feature). libcitygml 2.4 reads
+// elements by their local name whatever their namespace, skips the ones it does not know, and
+// fails on the property then left without an object ("endElement called on unbound
+// CityGMLElementParser"); an ADE element whose local name it knows (an ADE's own lod2Solid or
+// boundedBy) it would read as CityGML. Runs on well-formed XML (after first_xml_error).
+AdeElements blank_ade_elements(std::string& bytes) {
+  struct Open {
+    std::size_t start = 0, bindings = 0, kept_children = 0, removed_children = 0;
+    bool ade = false, inside_ade = false, attributes = false, text = false;
+  };
+  std::vector<Open> open;
+  std::vector<std::pair<std::string, std::string>> bindings;  // (prefix, URI), innermost last
+  std::vector<std::pair<std::size_t, std::size_t>> removed;   // [begin, end) byte ranges, in order
+  AdeElements found;
+  auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  // Just past the next `what` from `from` (the end of the file if there is none).
+  auto past = [&](std::string_view what, std::size_t from) {
+    const std::size_t at = bytes.find(what, from);
+    return at == std::string::npos ? bytes.size() : at + what.size();
+  };
+  auto remove = [&](std::size_t begin, std::size_t end) {
+    while (!removed.empty() && removed.back().first >= begin) removed.pop_back();  // inside it
+    removed.emplace_back(begin, end);
+  };
+  // The end of an element (its end tag, or its empty-element tag, ends at `end`).
+  auto close = [&](std::size_t end) {
+    const Open e = open.back();
+    open.pop_back();
+    bindings.resize(e.bindings);
+    if (e.inside_ade) return;
+    bool gone = e.ade;
+    if (!gone && !open.empty() && e.removed_children > 0 && e.kept_children == 0 && !e.text && !e.attributes) gone = true;
+    if (gone) remove(e.start, end);
+    if (!open.empty()) ++(gone ? open.back().removed_children : open.back().kept_children);
+  };
+  std::size_t i = 0;
+  while (true) {
+    const std::size_t lt = bytes.find('<', i);
+    if (!open.empty() && !open.back().text)
+      for (std::size_t k = i; k < std::min(lt, bytes.size()); ++k)
+        if (!is_space(bytes[k])) {
+          open.back().text = true;
+          break;
+        }
+    if (lt == std::string::npos) break;
+    if (bytes.compare(lt, 4, "<!--") == 0) {
+      i = past("-->", lt + 4);
+    } else if (bytes.compare(lt, 9, "<![CDATA[") == 0) {
+      if (!open.empty()) open.back().text = true;
+      i = past("]]>", lt + 9);
+    } else if (bytes.compare(lt, 2, "<?") == 0) {
+      i = past("?>", lt + 2);
+    } else if (bytes.compare(lt, 2, "<!") == 0) {
+      i = past(">", lt + 2);
+    } else if (bytes.compare(lt, 2, "</") == 0) {
+      i = past(">", lt + 2);
+      if (!open.empty()) close(i);
+    } else {
+      std::size_t k = lt + 1;
+      while (k < bytes.size() && !is_space(bytes[k]) && bytes[k] != '>' && bytes[k] != '/') ++k;
+      const std::string qname = bytes.substr(lt + 1, k - lt - 1);
+      Open e;
+      e.start = lt;
+      e.bindings = bindings.size();
+      e.inside_ade = !open.empty() && (open.back().ade || open.back().inside_ade);
+      // Attributes up to the tag's end ('>' may appear inside quoted values).
+      while (true) {
+        while (k < bytes.size() && is_space(bytes[k])) ++k;
+        if (k >= bytes.size() || bytes[k] == '>' || bytes[k] == '/') break;
+        const std::size_t eq = bytes.find('=', k);
+        if (eq == std::string::npos) break;
+        std::size_t name_end = eq;
+        while (name_end > k && is_space(bytes[name_end - 1])) --name_end;
+        const std::string attribute = bytes.substr(k, name_end - k);
+        std::size_t q = eq + 1;
+        while (q < bytes.size() && is_space(bytes[q])) ++q;
+        if (q >= bytes.size() || (bytes[q] != '"' && bytes[q] != '\'')) break;
+        const std::size_t value_end = bytes.find(bytes[q], q + 1);
+        if (value_end == std::string::npos) break;
+        const std::string value = bytes.substr(q + 1, value_end - q - 1);
+        if (attribute == "xmlns")
+          bindings.emplace_back("", value);
+        else if (attribute.starts_with("xmlns:"))
+          bindings.emplace_back(attribute.substr(6), value);
+        else
+          e.attributes = true;
+        k = value_end + 1;
+      }
+      const bool empty_element = k < bytes.size() && bytes[k] == '/';
+      i = past(">", k);
+      const std::size_t colon = qname.find(':');
+      const std::string prefix = colon == std::string::npos ? "" : qname.substr(0, colon);
+      const auto binding = std::find_if(bindings.rbegin(), bindings.rend(), [&](const auto& b) { return b.first == prefix; });
+      if (!e.inside_ade && binding != bindings.rend() && !binding->second.empty() && !is_citygml_namespace(binding->second)) {
+        e.ade = true;
+        auto ns = std::find_if(found.begin(), found.end(), [&](const AdeNamespace& a) { return a.uri == binding->second; });
+        if (ns == found.end()) ns = found.insert(found.end(), {binding->second, {}});
+        if (ns->elements.size() < 64 || ns->elements.count(qname)) ++ns->elements[qname];
+      }
+      open.push_back(e);
+      if (empty_element) close(i);
+    }
+  }
+  for (const auto& [begin, end] : removed)
+    for (std::size_t k = begin; k < end; ++k)
+      if (bytes[k] != '\n' && bytes[k] != '\r') bytes[k] = ' ';
+  return found;
 }
 
 // ---- Xerces: where malformed XML breaks ----------------------------------------------------
@@ -286,6 +467,12 @@ std::string location_of(const std::string& message) {
   return std::to_string(line) + ":" + std::to_string(column);
 }
 
+// "file:12:5" with the location of a libcitygml message, "file" when it gives none.
+std::string file_at(const std::string& name, const std::string& message) {
+  const std::string at = location_of(message);
+  return at.empty() ? name : name + ":" + at;
+}
+
 std::string without_file(std::string message) {
   if (const std::size_t p = message.find(" in file "); p != std::string::npos) message.erase(p);
   return message;
@@ -355,9 +542,27 @@ std::string surface_type_name(const CityObject& s) {
 }
 
 std::string object_type_name(const CityObject& o) {
-  // libcitygml maps TransportationComplex (and its areas) to one type; at object level it is a complex.
-  if (o.getType() == Type::COT_TransportationObject) return "TransportationComplex";
-  return o.getTypeAsString();
+  switch (o.getType()) {
+    // libcitygml maps TransportationComplex (and its areas) to one type; at object level it is a complex.
+    case Type::COT_TransportationObject:
+      return "TransportationComplex";
+    // Types libcitygml 2.4 parses but names "Unknown" (cityObjectsTypeToString has no case for
+    // them): the relief components (a TINRelief is the terrain of PLATEAU's dem files) and groups.
+    case Type::COT_ReliefComponent:
+      return "ReliefComponent";
+    case Type::COT_TINRelief:
+      return "TINRelief";
+    case Type::COT_MassPointRelief:
+      return "MassPointRelief";
+    case Type::COT_BreaklineRelief:
+      return "BreaklineRelief";
+    case Type::COT_RasterRelief:
+      return "RasterRelief";
+    case Type::COT_CityObjectGroup:
+      return "CityObjectGroup";
+    default:
+      return o.getTypeAsString();
+  }
 }
 
 struct ObjectEntry {
@@ -725,6 +930,15 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
   } catch (...) {
     thrown = "unknown exception";
   }
+  if (logger.error.find("called on unbound") != std::string::npos) {
+    // A property element (core:cityObjectMember, bldg:boundedBy, ...) whose object libcitygml
+    // does not know: it skips the object, then cannot end the property.
+    const std::size_t b = logger.error.find("for element <"), e = logger.error.find('>', b);
+    const std::string element = b == std::string::npos || e == std::string::npos ? "" : logger.error.substr(b + 12, e - b - 11);
+    throw InputError(file_at(name, logger.error) + ": libcitygml 2.4 cannot read the content of " +
+                     printable_text(element.empty() ? "an element" : element) +
+                     " ending here (an object of a kind it does not know, or none)");
+  }
   if (!thrown.empty() || !logger.error.empty() || !model) {
     const std::string what = !thrown.empty()         ? thrown
                              : !logger.error.empty() ? without_file(logger.error)
@@ -733,10 +947,10 @@ std::shared_ptr<const citygml::CityModel> load_model(const std::string& name, co
     throw InputError(name + (at.empty() ? "" : ":" + at) + ": libcitygml: " + printable_text(what).substr(0, 300));
   }
   if (!logger.bad_coordinates.empty())
-    throw InputError(name + ":" + location_of(logger.bad_coordinates) +
+    throw InputError(file_at(name, logger.bad_coordinates) +
                      ": a coordinate list (gml:posList / gml:pos) holds something that is not a finite number");
   if (!logger.bad_dimension.empty())
-    throw InputError(name + ":" + location_of(logger.bad_dimension) + ": srsDimension is not 3 (only 3D coordinates are read)");
+    throw InputError(file_at(name, logger.bad_dimension) + ": srsDimension is not 3 (only 3D coordinates are read)");
   return model;
 }
 
@@ -765,22 +979,27 @@ CrsInfo check_crs(const std::string& name, const FileScan& scan, CityGmlReport& 
 }
 
 // Geographic coordinates → the UTM zone of the model's centre (io/citygml_reprojection.h).
-void project_if_geographic(const std::string& name, const CrsInfo& info, RawSurfaces& raw, CityGmlReport& report) {
-  if (info.kind != CrsKind::geographic) return;
-  const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates);
+void project_if_geographic(const std::string& name, const CrsInfo& info, std::optional<UtmZone> shared, RawSurfaces& raw,
+                           CityGmlReport& report) {
+  if (info.kind != CrsKind::geographic || raw.coordinates.empty()) return;
+  const Reprojection r = reproject_geographic_to_utm(name, info, raw.coordinates, shared);
   report.crs = r.target_crs;
   report.reprojection = r.description;
+  report.utm_zone = r.zone;
 }
 
 TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlReadOptions& options, CityGmlReport* report) {
   const std::string name = file.string();
   std::optional<unsigned> requested;
   if (options.lod) requested = parse_requested_lod(name, *options.lod);
-  const std::string bytes = read_bytes(file);
-  const FileScan scan = scan_bytes(name, bytes);
+  std::string bytes = read_bytes(file);
+  FileScan scan = scan_bytes(name, bytes);
 
   if (const std::string xml = first_xml_error(bytes); !xml.empty())
     throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML)");
+  const AdeElements ade = blank_ade_elements(bytes);
+  check_coordinate_lists(name, bytes);
+  scan.srs_names = srs_names(bytes);
   auto logger = std::make_shared<Logger>();
   const auto model = load_model(name, bytes, *logger, logger);
 
@@ -793,7 +1012,7 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   Notes notes;
   const CrsInfo crs = check_crs(name, scan, r);
   ModelWalk(name, requested, options.lod.has_value(), crs.kind != CrsKind::geographic, soup, raw, counts, notes).read(*model);
-  project_if_geographic(name, crs, raw, r);
+  project_if_geographic(name, crs, options.utm_zone, raw, r);
   triangulate_surfaces(raw, soup, counts, notes);
 
   r.objects = counts.objects;
@@ -820,10 +1039,20 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
     r.notes.push_back(std::to_string(logger->short_rings) + " rings with fewer than 4 positions in the file");
   if (logger->duplicate_exteriors)
     r.notes.push_back(std::to_string(logger->duplicate_exteriors) + " polygons with a second exterior ring: the first one kept");
-  if (r.triangles == 0)
-    throw InputError(name + ": no triangles (" + std::to_string(r.objects) + " city objects, " +
-                     std::to_string(r.skipped_objects) + " skipped" +
-                     (options.lod ? ", requested LoD " + printable_text(*options.lod) : std::string()) + ")");
+  for (const AdeNamespace& a : ade)
+    r.notes.push_back("not read: the elements of the Application Domain Extension " + printable_text(a.uri) +
+                      " (ADEs are not supported), with their content: " + a.list(8));
+  if (r.triangles == 0) {
+    std::string uses;
+    for (std::size_t k = 0; k < ade.size() && k < 3; ++k)
+      uses += (k ? "; " : "") + printable_text(ade[k].uri) + " (" + ade[k].list(3) + ")";
+    if (ade.size() > 3) uses += "; ...";
+    throw InputError(
+        name + ": no triangles (" + std::to_string(r.objects) + " city objects, " + std::to_string(r.skipped_objects) +
+        " skipped" + (options.lod ? ", requested LoD " + printable_text(*options.lod) : std::string()) + ")" +
+        (ade.empty() ? std::string()
+                     : std::string("; not read, as Application Domain Extensions are not supported: the elements of ") + uses));
+  }
   if (report) *report = std::move(r);
   return soup;
 }

@@ -13,13 +13,29 @@
 //  - no text node (a gml:posList) longer than 1 000 000 bytes: libcitygml keeps only the last
 //    chunk of a text node that Xerces delivers in pieces (measured: texts over 1 MiB lose their
 //    start, the ring is cut mid-number, silently), so such a file is refused with its line;
-//  - every gml:posList / gml:pos is plain text of x y z triples up to its end tag: libcitygml
-//    keeps only the piece after a comment, CDATA section, character reference or child element
-//    inside it, and drops 1 or 2 trailing numbers, silently (measured), so those are refused;
-//  - the srsName attributes (all of them must name the same EPSG codes);
 //  - well-formedness, by a Xerces-C SAX pass of its own: libcitygml on malformed XML logs
 //    Xerces' message without its line and leaks what it had built, so it only sees
-//    well-formed XML, and the error names file:line:column.
+//    well-formed XML, and the error names file:line:column;
+//  - Application Domain Extensions: every element of a namespace that is not CityGML's (core
+//    and modules, `http://www.opengis.net/citygml/...`), GML's or xAL's is blanked out with its
+//    content (spaces, line ends kept, so every line keeps its number), and so is the property
+//    left empty by that (the core:cityObjectMember or bldg:boundedBy that held an ADE feature):
+//    libcitygml 2.4 reads elements by local name whatever their namespace (an ADE's own
+//    lod2Solid would be read as CityGML), skips the ones it does not know, and then fails on
+//    the property left without an object ("unbound CityGMLElementParser"). So an ADE subclass
+//    of a CityGML class (a roof surface of an energy ADE) is not read either. The report names
+//    each ADE namespace and its elements; a file of nothing else ends in the "no triangles"
+//    error, naming them;
+//  - every gml:posList, gml:pos and core:transformationMatrix (what libcitygml reads as
+//    numbers) is plain text up to its end tag — libcitygml keeps only the piece after a comment,
+//    CDATA section, character reference or child element inside it — of finite doubles
+//    (io/mesh_reader.h's parse_coordinate: no NaN, infinity, overflow beyond ±1.8·10³⁰⁸ or
+//    garbage; libcitygml reads a gml:pos with no check, 1e400 as 1.8·10³⁰⁸, an empty one as
+//    (0, 0, 0)), and whole: x y z triples in a posList (libcitygml drops 1 or 2 trailing
+//    numbers), exactly x y z in a pos, 16 numbers in a matrix, none empty. GML 2's
+//    gml:coordinates and gml:coord, which libcitygml does not read (their ring is dropped), are
+//    refused. Each error names the line and the value;
+//  - the srsName attributes (all of them must name the same EPSG codes).
 //
 // Reading (libcitygml with tesselation and "optimize" off, so rings arrive as written):
 //  - City objects are libcitygml's CityObjects except thematic surfaces: the boundary surfaces
@@ -43,27 +59,33 @@
 //    instance placed as M·x + reference point (M the row-major 4×4 transformationMatrix, as the
 //    CityJSON reader places geometry instances), at its LoD like any other geometry; not in a
 //    geographic CRS (a template in metres on a reference point in degrees), with a note.
-//  - Not read, and counted in the notes: curves and points, and the elements libcitygml skips
-//    (bldg:lod0FootPrint and lod0RoofEdge, ADE elements), by element name.
+//  - Not read, and counted in the notes: curves and points, the elements libcitygml skips
+//    (bldg:lod0FootPrint and lod0RoofEdge), by element name, and ADE elements (above).
 //
 // Material names (one per triangle): the thematic surface's type (RoofSurface, WallSurface,
 // GroundSurface, ..., Window, Door; traffic areas "TrafficArea" — libcitygml does not tell
 // auxiliary ones apart; water boundary surfaces "WaterBody"), else the object's type (Building,
-// BuildingPart, TINRelief, LandUse, Road, WaterBody, PlantCover, GenericCityObject, ...). So
-// the terrain classes match default_ground_materials() (lighting/climate/climate_irradiation.h).
+// BuildingPart, TINRelief, LandUse, Road, WaterBody, PlantCover, GenericCityObject, ...; the
+// relief components and CityObjectGroup, which libcitygml 2.4 names "Unknown", by their class:
+// TINRelief, RasterRelief, MassPointRelief, BreaklineRelief). So the terrain classes match
+// default_ground_materials() (lighting/climate/climate_irradiation.h): a PLATEAU dem file's
+// dem:ReliefFeature / dem:TINRelief is ground.
 //
 // Coordinate reference system (the srsName, kept in the report): projected CRSs are read as
 // metres verbatim. Geographic CRSs (PLATEAU's EPSG:6697, 4326, 6668, ...: latitude, longitude,
 // height) are projected to the UTM zone of the model's centre by PROJ
-// (io/citygml_reprojection.h: JGD2011 / UTM zone 54N, EPSG:6691, for Tokyo); heights are kept
-// as in the file, and the report says in which CRS the output is and what the heights are.
+// (io/citygml_reprojection.h: JGD2011 / UTM zone 54N, EPSG:6691, for Tokyo), or to the zone
+// given in the options (that of models read before, where it is this one's or a neighbour);
+// heights are kept as in the file, and the report says in which CRS the output is and what the
+// heights are.
 // Geocentric CRSs are refused (z is not up). A file without srsName is read as metres with a note.
 //
 // Errors (InputError, one line naming the file, and the line where the XML gives one): missing
 // or unreadable file, not XML or malformed XML (Xerces' message and line:column), not CityGML
-// 1.0/2.0, CityGML 3.0, an over-long text node, a coordinate list that is not numbers or has a
-// srsDimension other than 3, a non-finite coordinate, mixed or geocentric CRSs, a requested LoD
-// that is not a LoD, and a model that gives no triangle.
+// 1.0/2.0, CityGML 3.0, an over-long text node, a coordinate that is not a finite double, a
+// coordinate list or position that is empty, interrupted or not whole, GML 2 coordinates, a
+// srsDimension other than 3, mixed or geocentric CRSs, a requested LoD that is not a LoD, and a
+// model that gives no triangle.
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -72,11 +94,15 @@
 #include <vector>
 
 #include "geometry/mesh/triangle_soup.h"
+#include "io/citygml_reprojection.h"
 
 namespace skyband {
 
 struct CityGmlReadOptions {
   std::optional<std::string> lod;  // "2" (or "2.0"); unset: per object the highest it has
+  // Geographic CRSs: the UTM zone of models read before, shared when this model's own zone is
+  // that one or a neighbour (io/citygml_reprojection.h); unset: the zone of the model's centre.
+  std::optional<UtmZone> utm_zone;
 };
 
 struct CityGmlReport {
@@ -85,6 +111,7 @@ struct CityGmlReport {
   std::string crs_in_file;                // the srsName verbatim, "" if none
   std::string crs;                        // the CRS of the output: crs_in_file, or the UTM CRS reprojected to
   std::string reprojection;               // "" when not reprojected, else what was done (one line)
+  std::optional<UtmZone> utm_zone;        // when reprojected: the zone used
   std::size_t objects = 0;                // city objects (thematic surfaces not counted)
   std::size_t objects_with_geometry = 0;  // objects that gave at least one surface
   std::size_t skipped_objects = 0;        // objects with geometry of which nothing was read

@@ -131,7 +131,8 @@ CrsInfo classify_crs(const std::string& crs) {
   return info;
 }
 
-Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo& source, std::span<Vec3> points) {
+Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo& source, std::span<Vec3> points,
+                                         std::optional<UtmZone> shared) {
   if (points.empty()) return {};  // nothing to project (the reader reports the empty model)
   // Latitude and longitude of every point, checked, and the box's centre.
   double lat_min = std::numeric_limits<double>::infinity(), lat_max = -lat_min, lon_min = lat_min, lon_max = -lat_min;
@@ -150,8 +151,11 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   const double lat_centre = 0.5 * (lat_min + lat_max);
   double lon_centre = 0.5 * (lon_min + lon_max);
   if (lon_centre > 180) lon_centre -= 360;
-  const int zone = std::clamp(static_cast<int>(std::floor((lon_centre + 180) / 6)) + 1, 1, 60);
+  const int own_zone = std::clamp(static_cast<int>(std::floor((lon_centre + 180) / 6)) + 1, 1, 60);
   const bool north = lat_centre >= 0;
+  const int apart = shared ? std::abs(shared->number - own_zone) : 0;
+  const bool use_shared = shared && shared->north == north && (apart <= 1 || apart == 59);  // 59: zones 60 and 1
+  const int zone = use_shared ? shared->number : own_zone;
 
   const ThirdPartyFpGuard fp;  // PROJ's own floating point, from here on
   Context c = quiet_context();
@@ -181,6 +185,7 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   }
 
   Reprojection r;
+  r.zone = {zone, north};
   r.target_crs = "EPSG:" + std::to_string(target_epsg) + (source.vertical_epsg ? "+" + std::to_string(source.vertical_epsg) : "");
   r.target_name = proj_get_name(target.get()) ? proj_get_name(target.get()) : "";
   r.operation = proj_get_name(op.get()) ? proj_get_name(op.get()) : "";
@@ -194,9 +199,9 @@ Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo&
   r.description = "reprojected by PROJ " + std::string(proj_info().release) + " from " + source.name +
                   " (EPSG:" + std::to_string(source.epsg) +
                   (source.latitude_first ? ", latitude, longitude" : ", longitude, latitude") + ") to " + r.target_crs + " (" +
-                  r.target_name + ", x = easting, y = northing; operation: " + r.operation +
-                  "); z kept as in the file: " + source.heights + "; UTM scale factor at the model's centre " + k +
-                  " (horizontal distances only)";
+                  r.target_name + (use_shared && zone != own_zone ? ", the zone of the models read before it" : "") +
+                  ", x = easting, y = northing; operation: " + r.operation + "); z kept as in the file: " + source.heights +
+                  "; UTM scale factor at the model's centre " + k + " (horizontal distances only)";
   return r;
 }
 

@@ -18,7 +18,12 @@
 //   anything else   → WGS 84 / UTM, EPSG:326zz (north) / 327zz (south), through the
 //                     transformation PROJ picks (a datum shift, possibly a ballpark one: stated).
 // The zone is floor((λ + 180°)/6) + 1 of the longitude at the centre of the model's box (the
-// Norway/Svalbard exceptions are not applied).
+// Norway/Svalbard exceptions are not applied), north or south by the centre's latitude. Models
+// read together share a zone: given the zone of those read before (`shared`), a model whose own
+// zone is that one or a neighbour, in the same hemisphere, is projected to it (tiles on both
+// sides of a zone boundary then join; at most 9° from the central meridian, k ≤ 1.012); else
+// to its own zone, whose different CRS the caller reports.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,7 +50,14 @@ struct CrsInfo {
 // geographic if geographic_epsg_codes() (io/cityjson_reader.h) lists it, else unknown.
 CrsInfo classify_crs(const std::string& crs);
 
+struct UtmZone {
+  int number = 0;  // 1–60
+  bool north = true;
+  bool operator==(const UtmZone&) const = default;
+};
+
 struct Reprojection {
+  UtmZone zone;
   std::string target_crs;          // "EPSG:6691", or "EPSG:6691+6695" when the source had a vertical CRS
   std::string target_name;         // "JGD2011 / UTM zone 54N"
   std::string operation;           // PROJ's name of the operation used
@@ -57,6 +69,7 @@ struct Reprojection {
 // when !source.latitude_first — on output (easting m, northing m, h) with h unchanged. Throws
 // InputError (prefixed with `file`) on a latitude outside [−90°, 90°], a longitude outside
 // [−180°, 360°] or a point PROJ cannot transform.
-Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo& source, std::span<Vec3> points);
+Reprojection reproject_geographic_to_utm(const std::string& file, const CrsInfo& source, std::span<Vec3> points,
+                                         std::optional<UtmZone> shared = std::nullopt);
 
 }  // namespace skyband

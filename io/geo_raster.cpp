@@ -18,6 +18,7 @@
 
 #include "geometry/core/input_error.h"
 #include "io/atomic_file.h"
+#include "io/crs_codes.h"
 #include "io/third_party_fp.h"
 
 namespace skyband {
@@ -216,6 +217,25 @@ std::string crs_wkt_of(const std::string& crs, const std::string& what) {
   // which keeps its EPSG code in the GeoTIFF keys (GIS software identifies it).
   if (srs.IsCompound()) srs.StripVertical();
   return wkt_of(srs);
+}
+
+std::optional<bool> same_crs(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  const ThirdPartyFpGuard fp;  // GDAL's and PROJ's own floating point
+  register_gdal();
+  QuietGdal quiet;
+  OGRSpatialReference sa, sb;
+  if (sa.SetFromUserInput(a.c_str()) != OGRERR_NONE || sb.SetFromUserInput(b.c_str()) != OGRERR_NONE) {
+    const std::vector<int> ca = crs_epsg_codes(a), cb = crs_epsg_codes(b);
+    if (ca.empty() || cb.empty()) return std::nullopt;
+    return ca == cb;
+  }
+  const char* options[] = {"IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES", nullptr};
+  if (sa.IsSame(&sb, options)) return true;
+  const bool both_vertical = sa.IsCompound() && sb.IsCompound();
+  if (sa.IsCompound()) sa.StripVertical();
+  if (sb.IsCompound()) sb.StripVertical();
+  return !both_vertical && sa.IsSame(&sb, options);
 }
 
 void write_geotiff(const std::filesystem::path& file, const GeoTiffOutput& out) {

@@ -41,6 +41,14 @@ GeoRaster read_geo_raster(const std::filesystem::path& file, std::size_t max_pix
 // not know it or it is geographic.
 std::string crs_wkt_of(const std::string& crs, const std::string& what);
 
+// Whether two CRSs (each as crs_wkt_of takes it, or WKT) are the same coordinate system: their
+// horizontal parts equivalent by GDAL (axis-order conventions aside) and, when both have a
+// vertical part, the whole CRSs too — a CRS without a vertical part says nothing about heights,
+// so EPSG:28992 and EPSG:7415 (= EPSG:28992 + NAP height) are the same. Equal strings are the
+// same. When GDAL does not know one of them: the same if both name the same EPSG codes
+// (io/crs_codes.h), different if both name EPSG codes and these differ, else nullopt (unknown).
+std::optional<bool> same_crs(const std::string& a, const std::string& b);
+
 struct GeoTiffOutput {
   std::size_t columns = 0, rows = 0;
   std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -207,6 +208,28 @@ bool read_with_openmesh(const std::filesystem::path& file, const PolygonSoup& so
   return true;
 }
 
+// A warning when a triangle's corner lies beyond kFarCoordinate_m on some axis: the farthest one and the count.
+void warn_about_far_vertices(const TriangleSoup& soup, MeshReadReport& r) {
+  std::vector<char> far(soup.vertices.size(), 0);
+  std::size_t count = 0, worst = 0;
+  double worst_m = 0;
+  for (const auto& t : soup.triangles)
+    for (const std::uint32_t v : t) {
+      const double m = soup.vertices[v].cwiseAbs().maxCoeff();
+      if (!(m > kFarCoordinate_m) || far[v]) continue;
+      far[v] = 1;
+      ++count;
+      if (m > worst_m) worst_m = m, worst = v;
+    }
+  if (count == 0) return;
+  const Vec3& p = soup.vertices[worst];
+  char line[256];
+  std::snprintf(line, sizeof line, "%zu %s with a coordinate beyond +-%.0e m, the farthest at (%.17g, %.17g, %.17g)", count,
+                count == 1 ? "vertex" : "vertices", kFarCoordinate_m, p.x(), p.y(), p.z());
+  r.warnings.push_back(r.file + ": " + line +
+                       ": no place on Earth is that far in a projected CRS (a corrupt or sentinel value, or the wrong unit?)");
+}
+
 }  // namespace
 
 const std::vector<std::string>& supported_mesh_extensions() {
@@ -224,6 +247,7 @@ std::string MeshReadReport::summary() const {
   if (polygons_triangulated) s << ")";
   s << "\n  defects after welding identical positions: " << defects.summary();
   for (const auto& n : notes) s << "\n  note: " << n;
+  for (const auto& w : warnings) s << "\n  warning: " << w;
   return s.str();
 }
 
@@ -254,6 +278,7 @@ TriangleSoup read_city_model(const std::filesystem::path& file, MeshReadReport* 
     if (!c.crs.empty()) r.notes.push_back("referenceSystem " + c.crs);  // without one the reader's own note says so
     r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
     r.defects = analyse_defects(soup);
+    warn_about_far_vertices(soup, r);
     *report = std::move(r);
   }
   return soup;
@@ -264,6 +289,7 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
   CityGmlReport c;
   CityGmlReadOptions city;
   city.lod = options.lod;
+  city.utm_zone = options.utm_zone;
   TriangleSoup soup = read_citygml(file, city, &c);
   if (report) {
     MeshReadReport r;
@@ -273,6 +299,7 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
                            : std::string("libcitygml 2.4 + skyband CityGML reader (each object at its highest LoD)");
     r.vertices_in_file = c.vertices;
     r.crs = c.crs;
+    r.utm_zone = c.utm_zone;
     r.faces_in_file = r.faces_read = c.surfaces;
     r.triangles = c.triangles;
     r.polygons_triangulated = c.surfaces;
@@ -287,6 +314,7 @@ TriangleSoup read_citygml_model(const std::filesystem::path& file, MeshReadRepor
       r.notes.push_back("srsName " + c.crs_in_file + (c.crs != c.crs_in_file ? "; output in " + c.crs : std::string()));
     r.notes.insert(r.notes.end(), c.notes.begin(), c.notes.end());
     r.defects = analyse_defects(soup);
+    warn_about_far_vertices(soup, r);
     *report = std::move(r);
   }
   return soup;
@@ -377,6 +405,7 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
     r.notes.push_back("only " + std::to_string(r.faces_read) + " of " + std::to_string(r.faces_in_file) +
                       " faces gave triangles");
   r.defects = analyse_defects(out);
+  warn_about_far_vertices(out, r);
   if (used != &soup) {
     // The "as stored" counts describe the file, not the vertices OpenMesh duplicated at
     // non-manifold places.

@@ -59,6 +59,7 @@
 #include "geometry/core/vec3.h"
 #include "geometry/mesh/mesh_defects.h"
 #include "geometry/mesh/triangle_soup.h"
+#include "io/citygml_reprojection.h"
 
 namespace skyband {
 
@@ -71,17 +72,28 @@ struct MeshReadReport {
   std::size_t triangles = 0;
   std::size_t polygons_triangulated = 0;  // faces with > 3 vertices
   std::size_t polygons_fanned = 0;        // of those: zero-area or self-crossing, fan-triangulated
-  std::string crs;                        // city models: the CRS as the file names it ("" = none/unknown)
+  std::string crs;                        // city models: the CRS of the output ("" = none/unknown)
+  std::optional<UtmZone> utm_zone;        // geographic city models: the UTM zone they were projected to
   MeshDefects defects;                    // after welding exactly equal positions
   std::vector<std::string> notes;         // e.g. "OpenMesh dropped 743 faces; read as polygon soup"
-  std::string summary() const;            // a few human-readable lines
+  std::vector<std::string> warnings;      // what is read but likely wrong (see kFarCoordinate_m), one line each
+  std::string summary() const;            // a few human-readable lines (warnings included)
 };
+
+// Vertices farther than this from the origin along any axis are read, with a warning (a
+// corrupt or sentinel value, or the wrong unit): no projected CRS has coordinates beyond
+// ~4·10⁷ m (the Earth's circumference), and there the exact predicates' products of coordinate
+// differences lose the range of a double long before 10³⁰⁸. Metres.
+constexpr double kFarCoordinate_m = 1e8;
 
 struct MeshReadOptions {
   // City models (CityJSON, CityJSONSeq, CityGML): read each object at exactly this LoD ("1.2", "2.2";
   // objects without it are skipped and counted); unset: each object at the highest it has
   // (io/cityjson_reader.h). Other formats have no LoD: InputError when set for them.
   std::optional<std::string> lod;
+  // Geographic city models (CityGML), projected to UTM: the zone of the models read before, so
+  // that models read together share a CRS where they can (io/citygml_reprojection.h).
+  std::optional<UtmZone> utm_zone;
 };
 
 // Reads one mesh file. Throws InputError on unreadable, malformed or empty input.

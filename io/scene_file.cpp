@@ -12,6 +12,7 @@
 
 #include "geometry/core/input_error.h"
 #include "io/mesh_reader.h"
+#include "io/scene_crs.h"
 #include "io/toml_ascii.h"
 #include "io/utf8_text.h"
 #include "lighting/brdf/material.h"
@@ -482,9 +483,11 @@ SceneDescription load_scene_file(const std::filesystem::path& file, std::span<co
 
 TriangleSoup load_scene_geometry(const SceneDescription& scene, std::vector<std::string>* report) {
   TriangleSoup all;
+  SceneCrs crs;
   for (const auto& path : scene.meshes) {
     MeshReadReport rep;
-    TriangleSoup soup = read_mesh(path, &rep);
+    TriangleSoup soup = read_mesh(path, &rep, crs.next({}));
+    crs.add(rep);
     // Map usemtl names to built-in material names.
     std::vector<std::string> names;
     const std::size_t slots = std::max<std::size_t>(1, soup.material_names.size());

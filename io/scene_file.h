@@ -107,7 +107,7 @@ SceneDescription load_scene_file(const std::filesystem::path& file, std::span<co
 
 // Reads every mesh and joins them into one soup whose material_names are built-in material
 // names (usemtl name → assignment → itself if built-in → default). `report` (optional) gets one
-// line per mesh.
+// line per mesh. The meshes must share one CRS (io/scene_crs.h).
 TriangleSoup load_scene_geometry(const SceneDescription& scene, std::vector<std::string>* report = nullptr);
 
 }  // namespace skyband

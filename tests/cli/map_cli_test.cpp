@@ -185,3 +185,44 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_and_writes_nothing) {
       d / "out.tif");
   BOOST_TEST(!fs::exists(d / "no_folder"));
 }
+
+// --crs labels the map, it does not reproject: with an input that names a CRS it must be that
+// CRS (however spelled; a compound CRS matches its horizontal part), else the command ends with
+// one line naming the input, its CRS and --crs (exit 2, no map); an input without a CRS takes it.
+BOOST_AUTO_TEST_CASE(crs_option_must_be_the_inputs_own_crs) {
+  const fs::path d = skyband::test::test_folder("map_cli_crs_option");
+  {
+    // A flat 3 × 3 DSM of 1 m pixels in RD New, and the same without a CRS.
+    skyband::GeoTiffOutput dsm;
+    dsm.columns = dsm.rows = 3;
+    dsm.geotransform = {155000, 1, 0, 463003, 0, -1};
+    const std::vector<float> zeros(9, 0.0f);
+    dsm.values = zeros;
+    dsm.crs_wkt = skyband::crs_wkt_of("EPSG:28992", "test");
+    skyband::write_geotiff(d / "rd.tif", dsm);
+    std::ofstream(d / "plain.asc") << "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 0 0\n0 0 0\n0 0 0\n";
+  }
+  const double x0 = 500000, y0 = 5400000;
+  skyband::test::write_cube_citygml(d / "cube.gml", x0, y0, "EPSG:25832");
+  const std::string model =
+      " --mesh " + q(d / "cube.gml") + " --spacing 5 --bounds 499990,5399990,500020,5400020 --out " + q(d / "m.tif");
+  skyband::test::check_bad_input({{"map --dsm " + q(d / "rd.tif") + " --crs EPSG:2056 --out " + q(d / "m.tif"),
+                                   (d / "rd.tif").string(),
+                                   {"EPSG:28992", "--crs EPSG:2056", "does not reproject", "gdalwarp"}},
+                                  {"map" + model + " --crs EPSG:28992",
+                                   (d / "cube.gml").string(),
+                                   {"EPSG:25832", "--crs EPSG:28992", "does not reproject"}}},
+                                 d / "m.tif");
+  for (const auto& [args, crs] : std::vector<std::pair<std::string, std::string>>{
+           {"map --dsm " + q(d / "rd.tif") + " --crs EPSG:7415 --out " + q(d / "m.tif"), "EPSG:28992"},
+           {"map --dsm " + q(d / "rd.tif") + " --crs urn:ogc:def:crs:EPSG::28992 --out " + q(d / "m.tif"), "EPSG:28992"},
+           {"map --dsm " + q(d / "plain.asc") + " --crs EPSG:28992 --out " + q(d / "m.tif"), "EPSG:28992"},
+           {"map" + model + " --crs urn:ogc:def:crs:EPSG::25832", "EPSG:25832"},
+           {"map" + model, "EPSG:25832"}}) {
+    fs::remove(d / "m.tif");
+    const auto r = run_skyband(args + " --quiet");
+    BOOST_TEST_INFO(args);
+    BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+    BOOST_TEST(skyband::read_geo_raster(d / "m.tif").crs_name == crs);
+  }
+}

@@ -80,6 +80,16 @@ std::string pos_list(const std::vector<Vec3>& ring) {
   return out + "</gml:posList>";
 }
 
+// A polygon whose outer ring is written as one gml:pos per vertex (the first repeated at the end).
+std::string pos_polygon(const std::string& id, const std::vector<Vec3>& ring) {
+  std::string out = "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>";
+  for (std::size_t i = 0; i <= ring.size(); ++i) {
+    const Vec3& p = ring[i % ring.size()];
+    out += "<gml:pos>" + number(p.x()) + " " + number(p.y()) + " " + number(p.z()) + "</gml:pos>";
+  }
+  return out + "</gml:LinearRing></gml:exterior></gml:Polygon>";
+}
+
 std::string polygon(const std::string& id, const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes = {}) {
   std::string out =
       "<gml:Polygon gml:id=\"" + id + "\"><gml:exterior><gml:LinearRing>" + pos_list(outer) + "</gml:LinearRing></gml:exterior>";
@@ -93,12 +103,15 @@ std::string multi_surface(const std::vector<std::string>& polygons) {
   return out + "</gml:MultiSurface>";
 }
 
-std::string document(const std::string& version, const std::string& srs, const std::string& members) {
+// `extra`: more namespace declarations on the root (an ADE's).
+std::string document(const std::string& version, const std::string& srs, const std::string& members,
+                     const std::string& extra = "") {
   const std::string ns = "http://www.opengis.net/citygml/";
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"" + ns + version + "\" xmlns:bldg=\"" + ns +
          "building/" + version + "\" xmlns:luse=\"" + ns + "landuse/" + version + "\" xmlns:veg=\"" + ns + "vegetation/" +
-         version +
-         "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">\n"
+         version + "\" xmlns:dem=\"" + ns + "relief/" + version +
+         "\" xmlns:gml=\"http://www.opengis.net/gml\" xmlns:xlink=\"http://www.w3.org/1999/xlink\"" + extra +
+         ">\n"
          "<gml:boundedBy><gml:Envelope srsName=\"" +
          srs +
          "\" srsDimension=\"3\"><gml:lowerCorner>0 0 0</gml:lowerCorner>"
@@ -397,10 +410,10 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
                  .find("malformed XML") != std::string::npos);
   std::string nan = good;
   nan.replace(nan.find("10.125"), 6, "nan");
-  BOOST_TEST(error_of("nan.gml", nan).find("not a finite number") != std::string::npos);
+  BOOST_TEST(error_of("nan.gml", nan).find("non-finite coordinate in <gml:posList> 'nan'") != std::string::npos);
   std::string overflow = good;
   overflow.replace(overflow.find("10.125"), 6, "1e999");
-  BOOST_TEST(error_of("overflow.gml", overflow).find("not a finite number") != std::string::npos);
+  BOOST_TEST(error_of("overflow.gml", overflow).find("'1e999' is out of the range of a double") != std::string::npos);
   // What libcitygml would cut silently (it keeps the text after the last interruption): refused.
   for (const auto& [label, insert, expect] :
        std::vector<std::array<std::string, 3>>{{"comment.gml", " <!-- a comment --> ", "comment"},
@@ -413,7 +426,9 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   }
   std::string flat = good;
   flat.replace(flat.find("<gml:posList srsDimension=\"3\">"), 30, "<gml:posList srsDimension=\"2\">");
-  BOOST_TEST(error_of("2d.gml", flat).find("srsDimension") != std::string::npos);
+  const std::string flat_error = error_of("2d.gml", flat);
+  BOOST_TEST(flat_error.find(": srsDimension is not 3") != std::string::npos, flat_error);
+  BOOST_TEST(flat_error.find("::") == std::string::npos, flat_error);  // no empty location
   BOOST_TEST(error_of("nothing.gml", document("2.0", kProjected, member("<bldg:Building gml:id=\"b\"/>"))).find("no triangles") !=
              std::string::npos);
   BOOST_TEST(error_of("plain.xml", "<?xml version=\"1.0\"?><root><a/></root>").find("not CityGML 1.0 or 2.0") !=
@@ -438,6 +453,208 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
                       "</bldg:lod1MultiSurface></bldg:Building>"));
   BOOST_TEST(error_of("long.gml", long_text).find("cuts texts over 1 MiB") != std::string::npos);
   BOOST_TEST(input_error([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
+}
+
+// gml:pos, the coordinates libcitygml reads with no check at all, are checked as posList's are
+// (every number a finite double, a whole position, plain text), and so is an implicit geometry's
+// transformationMatrix; GML 2's gml:coordinates, which libcitygml drops, is refused. Each error
+// names the file, the line and the value.
+BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
+  const std::string good = document("2.0", kProjected,
+                                    member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>\n" +
+                                           multi_surface({pos_polygon("g", kBox.ground()), pos_polygon("r", kBox.roof())}) +
+                                           "\n</bldg:lod1MultiSurface></bldg:Building>"));
+  BOOST_TEST(read_citygml(write_file("pos.gml", good)).triangle_count() == 4u);
+  const std::string first = "<gml:pos>" + number(kBox.lo.x());  // the first vertex's x, on line 5
+  auto error_of = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    const fs::path p = write_file(name, text);
+    const std::string e = input_error([&] { read_citygml(p); });
+    BOOST_TEST(e.find(p.string() + ":5: ") == 0u, name << ": " << e);
+    BOOST_TEST(e.find('\n') == std::string::npos);
+    return e;
+  };
+  for (const auto& [value, says] : std::vector<std::pair<std::string, std::string>>{{"1e400", "is out of the range of a double"},
+                                                                                    {"-1e999", "is out of the range of a double"},
+                                                                                    {"1e-400", "is out of the range of a double"},
+                                                                                    {"NaN", "non-finite coordinate"},
+                                                                                    {"-INF", "non-finite coordinate"},
+                                                                                    {"1.0abc", "is not a number"},
+                                                                                    {"1,5", "is not a number"}}) {
+    const std::string e = error_of("pos_bad.gml", first, "<gml:pos>" + value);
+    BOOST_TEST(e.find("'" + value + "'") != std::string::npos, e);
+    BOOST_TEST(e.find(says) != std::string::npos, e);
+    BOOST_TEST(e.find("<gml:pos>") != std::string::npos, e);
+  }
+  const std::string first_pos = good.substr(good.find("<gml:pos>"), good.find("</gml:pos>") + 10 - good.find("<gml:pos>"));
+  BOOST_TEST(error_of("pos_empty.gml", first_pos, "<gml:pos></gml:pos>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_blank.gml", first_pos, "<gml:pos> </gml:pos>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_closed.gml", first_pos, "<gml:pos/>").find("<gml:pos> is empty") != std::string::npos);
+  BOOST_TEST(error_of("pos_short.gml", first_pos, "<gml:pos>1 2</gml:pos>").find("holds 2 numbers, not x y z") !=
+             std::string::npos);
+  BOOST_TEST(error_of("pos_long.gml", first_pos, "<gml:pos>1 2 3 4</gml:pos>").find("holds 4 numbers, not x y z") !=
+             std::string::npos);
+  BOOST_TEST(error_of("pos_list_empty.gml", first_pos, "<gml:posList/>").find("<gml:posList> is empty") != std::string::npos);
+  BOOST_TEST(
+      error_of("coordinates.gml", first_pos, "<gml:coordinates>1,2,3</gml:coordinates>").find("write it as a gml:posList") !=
+      std::string::npos);
+  // A leading '+' is valid xs:double (and read).
+  std::string plus = good;
+  plus.replace(plus.find(first), first.size(), "<gml:pos>+" + number(kBox.lo.x()));
+  BOOST_TEST(read_citygml(write_file("pos_plus.gml", plus)).triangle_count() == 4u);
+
+  // An implicit geometry's matrix: 16 finite numbers.
+  const std::string tree =
+      "<veg:SolitaryVegetationObject gml:id=\"t\"><veg:lod2ImplicitRepresentation><core:ImplicitGeometry>\n"
+      "<core:transformationMatrix>1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</core:transformationMatrix><core:relativeGMLGeometry>" +
+      multi_surface({polygon("p", {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)})}) +
+      "</core:relativeGMLGeometry><core:referencePoint><gml:Point><gml:pos>500000 5400000 0</gml:pos></gml:Point>"
+      "</core:referencePoint></core:ImplicitGeometry></veg:lod2ImplicitRepresentation></veg:SolitaryVegetationObject>";
+  const std::string trees = document("2.0", kProjected, member(tree));
+  BOOST_TEST(read_citygml(write_file("tree.gml", trees)).triangle_count() == 1u);
+  for (const auto& [matrix, says] :
+       std::vector<std::pair<std::string, std::string>>{{"1 0 0 0 0 1 0 0 0 0 nan 0 0 0 0 1", "'nan'"},
+                                                        {"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0", "holds 15 numbers, not 16"},
+                                                        {"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1x", "'1x' is not a number"}}) {
+    std::string text = trees;
+    text.replace(text.find("1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"), 31, matrix);
+    const fs::path p = write_file("tree_bad.gml", text);
+    const std::string e = input_error([&] { read_citygml(p); });
+    BOOST_TEST(e.find(p.string() + ":5: ") == 0u, e);
+    BOOST_TEST(e.find(says) != std::string::npos, e);
+  }
+}
+
+// A vertex far beyond any place on Earth is read, with a warning in the report naming the file
+// and the value (as for the mesh formats).
+BOOST_AUTO_TEST_CASE(far_vertices_are_read_with_a_warning) {
+  std::string text = document("2.0", kProjected, member(box_building("b", kBox, true, false)));
+  text.replace(text.find(number(kBox.lo.x())), number(kBox.lo.x()).size(), "1e300");
+  const fs::path p = write_file("far.gml", text);
+  MeshReadReport report;
+  read_mesh(p, &report);
+  BOOST_TEST_REQUIRE(report.warnings.size() == 1u);
+  BOOST_TEST(report.warnings[0].find(p.string() + ": 1 vertex with a coordinate beyond") == 0u, report.warnings[0]);
+  BOOST_TEST(report.warnings[0].find("1.0000000000000001e+300") != std::string::npos, report.warnings[0]);
+  BOOST_TEST(report.summary().find("warning: ") != std::string::npos);
+  read_mesh(write_file("near.gml", document("2.0", kProjected, member(box_building("b", kBox)))), &report);
+  BOOST_TEST(report.warnings.empty());
+}
+
+// Application Domain Extensions: their elements are not read (libcitygml would fail on a
+// property whose ADE object it skips, and read an ADE element named like a CityGML one, such as
+// an ADE's own lod2MultiSurface, as CityGML). An ADE subclass of a roof under bldg:boundedBy, an
+// ADE property of the building and an ADE feature of its own are left out; the rest of the
+// building reads, lines keep their numbers, and the report names the ADE and its elements.
+BOOST_AUTO_TEST_CASE(ade_elements_are_not_read_and_named) {
+  const std::string ns = " xmlns:test=\"http://www.example.org/ade/test/1.0\"";
+  std::string building = box_building("b", kBox, false, true);
+  // The roof surface as an ADE class; the solid's xlink to its polygon then finds nothing.
+  const std::size_t roof = building.find("<bldg:RoofSurface");
+  building.replace(roof, 17, "<test:IndustrialRoofSurface");
+  building.replace(building.find("</bldg:RoofSurface>"), 19, "</test:IndustrialRoofSurface>");
+  building.insert(building.find("<bldg:lod2Solid>"), "<test:energy><test:Certificate><test:lod2MultiSurface>" +
+                                                         multi_surface({polygon("adeq", kBox.roof())}) +
+                                                         "</test:lod2MultiSurface></test:Certificate></test:energy>\n");
+  const std::string other = "<test:Thing gml:id=\"thing\"><test:lod2MultiSurface>" +
+                            multi_surface({polygon("adep", kBox.ground())}) + "</test:lod2MultiSurface></test:Thing>";
+  const std::string text = document("2.0", kProjected, member(building) + member(other), ns);
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(write_file("ade.gml", text), {}, &report);
+  const auto areas = area_by_material(s);
+  BOOST_TEST(areas.count("RoofSurface") == 0u);
+  BOOST_TEST(areas.at("GroundSurface") == 200.0, tt::tolerance(1e-9));
+  BOOST_TEST(areas.at("WallSurface") == 298.0, tt::tolerance(1e-9));
+  BOOST_TEST(s.object_names == std::vector<std::string>{"b"});
+  std::string ade_note;
+  for (const std::string& n : report.notes)
+    if (n.find("Application Domain Extension") != std::string::npos) ade_note = n;
+  BOOST_TEST(ade_note.find("http://www.example.org/ade/test/1.0") != std::string::npos, ade_note);
+  BOOST_TEST(ade_note.find("1 x <test:IndustrialRoofSurface>, 1 x <test:Thing>, 1 x <test:energy>") != std::string::npos,
+             ade_note);
+  // Lines keep their numbers after the blanked ADE elements: a bad value after them is found on
+  // its own line.
+  std::string bad = text;
+  bad.replace(bad.rfind("</core:CityModel>"), 17,
+              member("<bldg:Building gml:id=\"c\"><bldg:lod1MultiSurface>\n" + multi_surface({pos_polygon("x", kBox.roof())}) +
+                     "</bldg:lod1MultiSurface></bldg:Building>") +
+                  "</core:CityModel>");
+  bad.replace(bad.rfind("<gml:pos>" + number(kBox.lo.x())), 9 + number(kBox.lo.x()).size(), "<gml:pos>NaN");
+  const fs::path p = write_file("ade_bad.gml", bad);
+  const std::size_t line = 1 + std::count(bad.begin(), bad.begin() + bad.rfind("<gml:pos>NaN"), '\n');
+  const std::string e = input_error([&] { read_citygml(p); });
+  BOOST_TEST(e.find(p.string() + ":" + std::to_string(line) + ": non-finite coordinate") == 0u, e);
+  // A CityGML element libcitygml does not know, alone in its property: one line naming the place.
+  const fs::path unknown = write_file("unknown.gml", document("2.0", kProjected, member("<bldg:Shed gml:id=\"s\"/>")));
+  const std::string u = input_error([&] { read_citygml(unknown); });
+  BOOST_TEST(u.find(unknown.string() + ":4:") == 0u, u);
+  BOOST_TEST(u.find("cannot read the content of <core:cityobjectmember>") != std::string::npos, u);
+  // A file of ADE features alone: one line naming the file and the ADE.
+  const fs::path only = write_file("ade_only.gml", document("2.0", kProjected, member(other), ns));
+  const std::string o = input_error([&] { read_citygml(only); });
+  BOOST_TEST(o.find(only.string() + ": no triangles") == 0u, o);
+  BOOST_TEST(o.find("Application Domain Extensions are not supported") != std::string::npos, o);
+  BOOST_TEST(o.find("http://www.example.org/ade/test/1.0 (1 x <test:Thing>)") != std::string::npos, o);
+  BOOST_TEST(o.find('\n') == std::string::npos);
+}
+
+// Relief components, which libcitygml 2.4 types but names "Unknown", carry their class name: a
+// dem:TINRelief inside a dem:ReliefFeature (PLATEAU's dem files) is "TINRelief", a ground material.
+BOOST_AUTO_TEST_CASE(tin_relief_is_named_and_ground) {
+  auto triangle = [](const std::vector<Vec3>& t) {
+    return "<gml:Triangle><gml:exterior><gml:LinearRing>" + pos_list(t) + "</gml:LinearRing></gml:exterior></gml:Triangle>";
+  };
+  const Vec3 o = kBox.lo;
+  const std::string relief =
+      "<dem:ReliefFeature gml:id=\"relief\"><dem:lod>1</dem:lod><dem:reliefComponent><dem:TINRelief gml:id=\"tin\">"
+      "<dem:lod>1</dem:lod><dem:tin><gml:TriangulatedSurface><gml:trianglePatches>" +
+      triangle({o, o + Vec3(100, 0, 0), o + Vec3(100, 100, 0)}) + triangle({o, o + Vec3(100, 100, 0), o + Vec3(0, 100, 0)}) +
+      "</gml:trianglePatches></gml:TriangulatedSurface></dem:tin></dem:TINRelief></dem:reliefComponent></dem:ReliefFeature>";
+  CityGmlReport report;
+  const TriangleSoup s = read_citygml(
+      write_file("relief.gml", document("2.0", kProjected, member(relief) + member(box_building("b", kBox)))), {}, &report);
+  const auto areas = area_by_material(s);
+  BOOST_TEST(areas.at("TINRelief") == 1e4, tt::tolerance(1e-9));
+  BOOST_TEST(areas.count("Unknown") == 0u);
+  const std::vector<bool> ground = ground_triangle_mask(s, default_ground_materials());
+  double ground_m2 = 0;
+  for (std::size_t t = 0; t < s.triangle_count(); ++t)
+    if (ground[t]) ground_m2 += area_m2(s, t);
+  BOOST_TEST(ground_m2 == 1e4, tt::tolerance(1e-9));  // the relief, not the building
+}
+
+// Geographic models read together share a UTM zone: tiles on both sides of 138° E (zones 53 and
+// 54) are both projected to the zone given, the first one's, checked against the Krüger series;
+// a model two zones away keeps its own (and the caller reports the different CRS).
+BOOST_AUTO_TEST_CASE(geographic_models_share_the_utm_zone_given) {
+  auto tile = [&](const std::string& name, double lon) {
+    const Box b{Vec3(35.0, lon, 5), 0.0004, 0.0004, 10};  // latitude, longitude, height (EPSG:6668)
+    return write_file(name, document("2.0", "EPSG:6668", member(box_building("b", b))));
+  };
+  const fs::path west = tile("west.gml", 137.9994), east = tile("east.gml", 138.0002), far = tile("far.gml", 150.5);
+  CityGmlReport w, e, f;
+  const TriangleSoup ws = read_citygml(west, {}, &w);
+  BOOST_TEST_REQUIRE(w.utm_zone.has_value());
+  BOOST_TEST(w.utm_zone->number == 53);
+  BOOST_TEST(w.crs == "EPSG:6690");
+  CityGmlReadOptions shared;
+  shared.utm_zone = w.utm_zone;
+  const TriangleSoup es = read_citygml(east, shared, &e);
+  BOOST_TEST(e.crs == "EPSG:6690");
+  BOOST_TEST((e.utm_zone == w.utm_zone));
+  BOOST_TEST(e.reprojection.find("the zone of the models read before it") != std::string::npos, e.reprojection);
+  // The east tile's south-west corner, projected to zone 53 by the series, is a vertex within 1 µm.
+  const Vec3 en = utm_forward(35.0, 138.0002, 53);
+  double best = 1e30;
+  for (const Vec3& v : es.vertices) best = std::min(best, std::hypot(v.x() - en.x(), v.y() - en.y()));
+  BOOST_TEST(best < 1e-6);
+  BOOST_TEST(read_citygml(east, {}, &e).vertices.size() == es.vertices.size());
+  BOOST_TEST(e.crs == "EPSG:6691");  // alone: its own zone, 54
+  read_citygml(far, shared, &f);
+  BOOST_TEST(f.utm_zone->number == 56);
+  BOOST_TEST(f.crs == "EPSG:6693");
+  BOOST_TEST(ws.triangle_count() > 0u);
 }
 
 // ---- The shared real files -----------------------------------------------------------------

@@ -180,3 +180,22 @@ BOOST_AUTO_TEST_CASE(refused_rasters_name_the_file_and_the_reason) {
   BOOST_TEST(!error_of([&] { write_geotiff(temp_dir() / "no_such_folder" / "x.tif", out); }).empty());
   BOOST_TEST(!fs::exists(temp_dir() / "no_such_folder"));
 }
+
+// same_crs: the same horizontal CRS however it is spelled; a compound CRS is its horizontal part
+// plus heights, so it matches the horizontal CRS alone, and another compound only with the same
+// heights; a CRS GDAL does not know compares by its EPSG codes, else is unknown.
+BOOST_AUTO_TEST_CASE(same_crs_compares_what_the_names_mean) {
+  BOOST_TEST((same_crs("EPSG:28992", "urn:ogc:def:crs:EPSG::28992") == true));
+  BOOST_TEST((same_crs("EPSG:28992", "http://www.opengis.net/def/crs/EPSG/0/28992") == true));
+  BOOST_TEST((same_crs("EPSG:28992", crs_wkt_of("EPSG:28992", "test")) == true));
+  BOOST_TEST((same_crs("EPSG:7415", "EPSG:28992") == true));  // RD New + NAP height; RD New
+  BOOST_TEST((same_crs("EPSG:7415", "urn:ogc:def:crs,crs:EPSG::28992,crs:EPSG::5709") == true));
+  BOOST_TEST((same_crs("EPSG:6691+6695", "EPSG:6691") == true));
+  BOOST_TEST((same_crs("EPSG:28992", "EPSG:25833") == false));
+  BOOST_TEST((same_crs("EPSG:25832", "EPSG:25833") == false));      // neighbouring UTM zones
+  BOOST_TEST((same_crs("EPSG:7415", "EPSG:28992+5710") == false));  // NAP height and Ostend height
+  BOOST_TEST((same_crs("EPSG:99999", "EPSG:99998") == false));      // unknown codes, but different ones
+  BOOST_TEST((same_crs("urn:ogc:def:crs:EPSG::99999", "EPSG:99999") == true));
+  BOOST_TEST(!same_crs("urn:adv:crs:ETRS89_UTM33*DE_DHHN92_NH", "EPSG:25833").has_value());
+  BOOST_TEST((same_crs("urn:adv:crs:ETRS89_UTM33*DE_DHHN92_NH", "urn:adv:crs:ETRS89_UTM33*DE_DHHN92_NH") == true));
+}

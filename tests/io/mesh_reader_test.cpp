@@ -556,3 +556,23 @@ BOOST_AUTO_TEST_CASE(cityjson_through_read_mesh, *skyband::test::needs_shared_da
   BOOST_TEST((std::find(m.begin(), m.end(), "Building") != m.end()));
   BOOST_TEST(r.summary().find("referenceSystem") != std::string::npos);
 }
+
+// A vertex beyond any place on Earth (1e300, or a sentinel such as 1e9 m) is read as it is, with
+// a warning naming the file, how many vertices and the farthest; vertices no triangle uses do
+// not count.
+BOOST_AUTO_TEST_CASE(far_vertices_are_read_with_a_warning) {
+  const fs::path far = temp_dir() / "far.obj";
+  write_bytes(far, "v 0 0 0\nv 1e300 0 0\nv 0 1 0\nv 0 0 -2e9\nv 5e9 0 0\nf 1 2 3\nf 1 3 4\n");
+  MeshReadReport r;
+  const TriangleSoup s = read_mesh(far, &r);
+  BOOST_TEST(s.vertices[1].x() == 1e300);
+  BOOST_TEST_REQUIRE(r.warnings.size() == 1u);
+  BOOST_TEST(r.warnings[0].find(far.string() + ": 2 vertices with a coordinate beyond +-1e+08 m, the farthest at "
+                                               "(1.0000000000000001e+300, 0, 0)") == 0u,
+             r.warnings[0]);
+  BOOST_TEST(contains(r.summary(), "\n  warning: " + far.string()));
+  const fs::path near = temp_dir() / "near.obj";
+  write_bytes(near, "v 678045.908 5403933.387 429.201\nv 678046 5403933 430\nv 678045 5403934 431\nv 1e9 0 0\nf 1 2 3\n");
+  read_mesh(near, &r);
+  BOOST_TEST(r.warnings.empty());
+}

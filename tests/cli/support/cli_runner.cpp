@@ -39,6 +39,7 @@ void check_bad_input(const std::vector<BadInputCase>& cases, const std::filesyst
     BOOST_TEST_INFO(c.args);
     BOOST_TEST(r.exit_code == 2);
     BOOST_TEST(r.err.find(c.must_mention) != std::string::npos, "stderr: " << r.err);
+    for (const std::string& m : c.also_mention) BOOST_TEST(r.err.find(m) != std::string::npos, m << " in stderr: " << r.err);
     BOOST_TEST(!std::filesystem::exists(must_not_exist));
   }
 }
@@ -48,6 +49,31 @@ void write_cube_obj(const std::filesystem::path& file) {
   f << "# cube\n";
   for (int i = 0; i < 8; ++i) f << "v " << (i & 1 ? 10 : 0) << ' ' << (i & 2 ? 10 : 0) << ' ' << (i & 4 ? 10 : 0) << '\n';
   f << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+}
+
+void write_cube_citygml(const std::filesystem::path& file, double x0, double y0, const std::string& srs) {
+  auto p = [&](double x, double y, double z) {
+    std::ostringstream s;
+    s.precision(17);
+    s << x0 + x << " " << y0 + y << " " << z << " ";
+    return s.str();
+  };
+  const std::vector<std::string> faces{p(0, 0, 0) + p(0, 10, 0) + p(10, 10, 0) + p(10, 0, 0) + p(0, 0, 0),
+                                       p(0, 0, 10) + p(10, 0, 10) + p(10, 10, 10) + p(0, 10, 10) + p(0, 0, 10),
+                                       p(0, 0, 0) + p(10, 0, 0) + p(10, 0, 10) + p(0, 0, 10) + p(0, 0, 0),
+                                       p(10, 0, 0) + p(10, 10, 0) + p(10, 10, 10) + p(10, 0, 10) + p(10, 0, 0),
+                                       p(10, 10, 0) + p(0, 10, 0) + p(0, 10, 10) + p(10, 10, 10) + p(10, 10, 0),
+                                       p(0, 10, 0) + p(0, 0, 0) + p(0, 0, 10) + p(0, 10, 10) + p(0, 10, 0)};
+  std::ofstream out(file);
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<core:CityModel xmlns:core=\"http://www.opengis.net/citygml/2.0\" "
+         "xmlns:bldg=\"http://www.opengis.net/citygml/building/2.0\" xmlns:gml=\"http://www.opengis.net/gml\">\n"
+         "<core:cityObjectMember><bldg:Building gml:id=\"cube\"><bldg:lod1Solid><gml:Solid srsName=\""
+      << srs << "\"><gml:exterior><gml:CompositeSurface>\n";
+  for (const std::string& f : faces)
+    out << "<gml:surfaceMember><gml:Polygon><gml:exterior><gml:LinearRing><gml:posList>" << f
+        << "</gml:posList></gml:LinearRing></gml:exterior></gml:Polygon></gml:surfaceMember>\n";
+  out << "</gml:CompositeSurface></gml:exterior></gml:Solid></bldg:lod1Solid></bldg:Building></core:cityObjectMember>\n"
+         "</core:CityModel>\n";
 }
 
 CliResult run_skyband(const std::string& args) {

@@ -24,9 +24,10 @@ std::string shell_quote(const std::filesystem::path& p);
 std::string slurp(const std::filesystem::path& p);
 
 // A command that must fail on bad input: exit code 2, and stderr mentioning `must_mention` (the
-// file, line, flag or value at fault).
+// file, line, flag or value at fault) and each of `also_mention` (a second file, the value).
 struct BadInputCase {
   std::string args, must_mention;
+  std::vector<std::string> also_mention = {};
 };
 
 // Runs each case and checks it (Boost.Test assertions, each labelled with the command), and
@@ -36,5 +37,9 @@ void check_bad_input(const std::vector<BadInputCase>& cases, const std::filesyst
 // A closed 10 m cube [0,10]³ as six OBJ quads (our own geometry; the closed forms of the CLI
 // tests are computed for it).
 void write_cube_obj(const std::filesystem::path& file);
+
+// A CityGML 2.0 cube [x0, x0 + 10] × [y0, y0 + 10] × [0, 10] as an LoD 1 solid of six
+// gml:posList rings, its srsName `srs`.
+void write_cube_citygml(const std::filesystem::path& file, double x0, double y0, const std::string& srs = "EPSG:25832");
 
 }  // namespace skyband::test
