@@ -105,7 +105,9 @@ void run_grid(const GridArgs& a) {
                grid.floor_plane ? "model's lowest z (no ground material: --ground-materials names it)" : "ground",
                grid.under_building, grid.off_ground, grid.dropped_exact, a.out.c_str());
   if (grid.points.empty() && nodes > 0)
-    std::fprintf(stderr, "points grid: warning: no point: is the terrain named by a ground material (--ground-materials)?\n");
+    std::fprintf(stderr,
+                 "points grid: warning: no point: is the terrain named by a ground material (--ground-materials; a file without "
+                 "materials by its name)?\n");
 }
 
 void parse_surfaces(const std::vector<std::string>& names, FacadePointsOptions& opt) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "cli/number_text.h"
 #include "cli/point_checks.h"
@@ -87,6 +88,19 @@ TriangleSoup PointJobArgs::load_meshes() const {
   return cli::load_meshes(meshes, lod, quiet);
 }
 
+namespace {
+
+// A file without materials (an OBJ without usemtl, an OFF, PLY or STL) gets one named after the
+// file, so that --ground-materials can name a terrain given as its own file: --mesh dtm.obj
+// --ground-materials dtm (and a file named ground.obj or terrain.obj is ground by default).
+void name_by_file_if_unnamed(TriangleSoup& part, const std::string& file) {
+  if (!part.material_names.empty() || part.triangles.empty()) return;
+  part.material_names = {std::filesystem::path(file).stem().string()};
+  part.triangle_material.assign(part.triangles.size(), 0);
+}
+
+}  // namespace
+
 TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
                          std::vector<MeshReadReport>* reports) {
   TriangleSoup soup;
@@ -97,6 +111,7 @@ TriangleSoup load_meshes(const std::vector<std::string>& files, const std::strin
     MeshReadReport report;
     TriangleSoup part = read_mesh(file, &report, crs.next(options));
     crs.add(report);
+    name_by_file_if_unnamed(part, file);
     soup.append(part);
     if (!quiet)
       std::fprintf(stderr, "%s\n", report.summary().c_str());  // warnings included

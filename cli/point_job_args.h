@@ -63,7 +63,9 @@ class PointJobArgs {
 // Mesh and city-model files appended in order into one soup, each read at `lod` ("" = each
 // object's highest), each file's read report on stderr unless `quiet` (its warnings always), and
 // kept in `reports` when given (the CRS of a city model is in its report). The files must share
-// one CRS (io/scene_crs.h): InputError naming two files in different CRSs.
+// one CRS (io/scene_crs.h): InputError naming two files in different CRSs. A file without
+// materials (an OBJ without usemtl, OFF, PLY, STL) has its triangles named after the file's stem
+// ("dtm" for dtm.obj), so that --ground-materials can name a terrain given as a file of its own.
 TriangleSoup load_meshes(const std::vector<std::string>& files, const std::string& lod, bool quiet,
                          std::vector<MeshReadReport>* reports = nullptr);
 

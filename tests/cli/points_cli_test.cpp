@@ -63,6 +63,25 @@ BOOST_AUTO_TEST_CASE(grid_around_a_cube) {
   }
 }
 
+// A terrain given as its own OBJ without usemtl is named by its file: the flat square dtm.obj
+// (z = 0.5 over [−5, 15]²) around the cube, --ground-materials dtm: the same 56 nodes beside the
+// cube, 1.5 m above the square (z = 2), the ground column naming it.
+BOOST_AUTO_TEST_CASE(grid_on_a_terrain_file_without_materials) {
+  const fs::path d = skyband::test::test_folder("points_cli_grid_dtm");
+  skyband::test::write_cube_obj(d / "cube.obj");
+  std::ofstream(d / "dtm.obj") << "v -5 -5 0.5\nv 15 -5 0.5\nv 15 15 0.5\nv -5 15 0.5\nf 1 2 3\nf 1 3 4\n";
+  const auto r =
+      run_skyband("points grid --mesh " + q(d / "cube.obj") + " --mesh " + q(d / "dtm.obj") +
+                  " --ground-materials dtm --spacing 2 --height 1.5 --bounds -4,-4,14,14 --out " + q(d / "g.csv") + " --quiet");
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  BOOST_TEST(r.err.find("56 points 1.5 m above the ground") != std::string::npos, r.err);
+  std::istringstream in(slurp(d / "g.csv"));
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  BOOST_TEST(line == "-3,-3,2,0,0,1,-2,-2,dtm");
+}
+
 BOOST_AUTO_TEST_CASE(grid_errors) {
   const fs::path d = skyband::test::test_folder("points_cli_errors");
   skyband::test::write_cube_obj(d / "cube.obj");
