@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/core/input_error.h"
+#include "input_error_of.h"
 #include "io/geo_raster.h"
 
 using namespace skyband;
@@ -34,16 +35,7 @@ fs::path write_text(const std::string& name, const std::string& text) {
   return p;
 }
 
-// The message of the InputError `f` throws ("" if none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using skyband::test::error_of;
 
 const char* kWgs84Wkt =
     R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";

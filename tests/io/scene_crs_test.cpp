@@ -8,6 +8,7 @@
 #include <string>
 
 #include "geometry/core/input_error.h"
+#include "input_error_of.h"
 #include "io/scene_crs.h"
 
 using namespace skyband;
@@ -22,15 +23,7 @@ MeshReadReport report(const std::string& file, const std::string& crs, std::opti
   return r;
 }
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using skyband::test::error_of;
 
 }  // namespace
 

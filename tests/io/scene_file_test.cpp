@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/core/input_error.h"
+#include "input_error_of.h"
 #include "io/scene_file.h"
 #include "io/toml_ascii.h"
 #include "shared_data.h"
@@ -47,16 +48,7 @@ SceneDescription parse(const std::string& text, std::vector<std::string> sets = 
   return parse_scene(text, scene_dir() / "scene.toml", sets);
 }
 
-// The message of the InputError thrown by f (empty if none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
+using skyband::test::error_of;
 
 bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;

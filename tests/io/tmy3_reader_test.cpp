@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "geometry/core/input_error.h"
+#include "input_error_of.h"
 #include "io/epw_reader.h"
 #include "io/support/tmy3_csv.h"
 #include "io/tmy3_reader.h"
@@ -41,15 +42,7 @@ fs::path write_text(const std::string& name, const std::string& text) {
   return p;
 }
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using skyband::test::error_of;
 
 const std::string kSite = "725300,\"CHICAGO OHARE INTL AP\",IL,-6.0,41.983,-87.917,201\n";
 
