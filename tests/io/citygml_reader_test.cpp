@@ -26,6 +26,13 @@ namespace tt = boost::test_tools;
 
 namespace {
 
+// Options reading each object at exactly LoD `lod`.
+CityGmlReadOptions at_lod(const std::string& lod) {
+  CityGmlReadOptions o;
+  o.lod = lod;
+  return o;
+}
+
 fs::path shared(const std::string& name) {
   return fs::path(SKYBAND_SHARED_DATA) / "citygml" / name;
 }
@@ -284,13 +291,13 @@ BOOST_AUTO_TEST_CASE(box_areas_materials_and_objects_in_closed_form) {
 BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
   const fs::path file = write_file("box_lods.gml", document("2.0", kProjected, member(box_building("box1", kBox))));
   CityGmlReport report;
-  const TriangleSoup lod1 = read_citygml(file, {std::string("1")}, &report);
+  const TriangleSoup lod1 = read_citygml(file, at_lod("1"), &report);
   BOOST_TEST(lod1.triangle_count() == 12u);  // the LoD 1 solid: 6 quads, no hole
   BOOST_TEST((area_by_material(lod1) == std::map<std::string, double>{{"Building", 700.0}}));
-  BOOST_TEST(read_citygml(file, {std::string("2.0")}).triangle_count() == 18u);  // "2.0" = "2"
-  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("3")}); }).find("no triangles") != std::string::npos);
-  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("2.2")}); }).find("no triangles") != std::string::npos);
-  BOOST_TEST(input_error([&] { read_citygml(file, {std::string("two")}); }).find("is not a LoD") != std::string::npos);
+  BOOST_TEST(read_citygml(file, at_lod("2.0")).triangle_count() == 18u);  // "2.0" = "2"
+  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("3")); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("2.2")); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("two")); }).find("is not a LoD") != std::string::npos);
 
   // A Building with an LoD 1 solid and a BuildingPart at LoD 2: by default the part alone (the
   // parent's LoD 1 would duplicate it); at LoD 1 the parent alone (the part has no LoD 1).
@@ -305,7 +312,7 @@ BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
   BOOST_TEST(report.objects == 2u);
   BOOST_TEST(report.skipped_objects == 1u);
   BOOST_TEST(by_default.triangle_count() == 18u);
-  const TriangleSoup at_lod1 = read_citygml(parts, {std::string("1")}, &report);
+  const TriangleSoup at_lod1 = read_citygml(parts, at_lod("1"), &report);
   BOOST_TEST(at_lod1.object_names == std::vector<std::string>{"parent"});
   BOOST_TEST(report.skipped_objects == 1u);
 }
@@ -685,7 +692,7 @@ BOOST_AUTO_TEST_CASE(tokyo_counts_match_an_independent_walk, *test::needs_shared
   BOOST_TEST(per_material.count("RoofSurface") == 1u);
   BOOST_TEST(per_material.count("WallSurface") == 1u);
   BOOST_TEST(per_material.count("GroundSurface") == 1u);
-  const TriangleSoup l1 = read_citygml(shared(kTokyo2), {std::string("1")}, &report);
+  const TriangleSoup l1 = read_citygml(shared(kTokyo2), at_lod("1"), &report);
   BOOST_TEST(report.surfaces == lod1.polygons);
   BOOST_TEST(l1.triangle_count() == lod1.triangles);
 }
@@ -697,7 +704,7 @@ BOOST_AUTO_TEST_CASE(yokosuka_lods_per_object, *test::needs_shared_data()) {
   // a Python ElementTree walk: 14 lod1Solid, 9 thematic surfaces in 3 objects).
   const XmlWalk lod1 = walk_blocks(text, "lod1Solid");
   CityGmlReport report;
-  const TriangleSoup l1 = read_citygml(shared(kYokosuka), {std::string("1")}, &report);
+  const TriangleSoup l1 = read_citygml(shared(kYokosuka), at_lod("1"), &report);
   BOOST_TEST(report.surfaces == lod1.polygons);
   BOOST_TEST(l1.triangle_count() == lod1.triangles);
   BOOST_TEST((report.lods_used == std::map<std::string, std::size_t>{{"1", 14}}));
