@@ -74,6 +74,8 @@ FUZZ_DIR=$BUILD/fuzz
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+# Third-party leaks on libcitygml's failure path (scripts/lsan-suppressions.txt).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt}
 
 # Extensions (lower case) of each target's seeds.
 seed_extensions() {

@@ -50,6 +50,8 @@ export SKYBAND_FP_TRAPS=${SKYBAND_FP_TRAPS:-1}
 export BOOST_TEST_CATCH_SYSTEM_ERRORS=no
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:check_initialization_order=1:strict_string_checks=1:handle_sigfpe=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# Third-party leaks on libcitygml's failure path (scripts/lsan-suppressions.txt).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt}
 status=0
 (cd "$BUILD_DIR" && ctest --output-on-failure -j "$JOBS" --timeout 3600 "${CTEST_SELECT[@]}" "$@") || status=$?
 echo "test-sanitized: tests took $(( $(date +%s) - t1 )) s (build folder $BUILD_DIR, SKYBAND_FP_TRAPS=$SKYBAND_FP_TRAPS)"
