@@ -7,6 +7,10 @@ cd "$(dirname "$0")/.."
 # ccache keys on paths relative to the repository: the build folders below (and clones at other
 # paths) share each other's objects wherever their flags agree.
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+# The sanitized and fuzzing builds carry debug info (-g), for which ccache also hashes the build
+# folder's absolute path unless told not to: without this, a clone at another path misses every one
+# of their objects. (Their debug info then names the folder that first compiled each object.)
+export CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
 scripts/install-deps.sh
 # The sources' layout (.clang-format), before the build: a quick failure.
 scripts/check-format.sh
