@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/support/scene_generators.h"
 
@@ -28,14 +29,36 @@ std::vector<QueryPoint> real_mesh_street_points(const Scene& scene, std::size_t 
   if (b.empty()) return out;
   const Vec3 lo = b.lo + 0.02 * (b.hi - b.lo), hi = b.hi - 0.02 * (b.hi - b.lo);
   const double top = b.hi.z() + 10;
+  // Where the vertical ray at (x, y) finds the ground: its height, or NaN where it finds a roof or
+  // a wall, or +∞ where nothing lies below.
+  const auto ground_hit = [&](double x, double y, double ground) {
+    const auto hit = scene.surface_hit(Ray{Vec3(x, y, top), Vec3(0, 0, -1)});
+    if (!hit) return std::numeric_limits<double>::infinity();
+    if (std::abs(hit->normal.z()) < 0.7 || hit->position.z() > ground + 1.5) return std::nan("");  // a roof or a wall
+    return hit->position.z();
+  };
+  // A model with a ground surface (terrain, roads, water: at least a tenth of the places with
+  // vertices nearby have one below) gets street points on it only — where nothing lies below is
+  // outside the model or in a hole of its ground; a model without one (buildings alone) gets them
+  // at its local ground level.
+  std::size_t tried = 0, on_ground = 0;
+  for (std::size_t attempt = 0; attempt < 20000 && tried < 400; ++attempt) {
+    const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
+    const double ground = local_ground(scene.soup(), Vec3(x, y, 0), 25.0);
+    if (!std::isfinite(ground)) continue;
+    ++tried;
+    on_ground += std::isfinite(ground_hit(x, y, ground));
+  }
+  const bool has_ground = 10 * on_ground >= tried && on_ground > 0;
   for (std::size_t attempt = 0; attempt < 200 * count && out.size() < count; ++attempt) {
     const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
     const double ground = local_ground(scene.soup(), Vec3(x, y, 0), 25.0);
     if (!std::isfinite(ground)) continue;
-    double z = ground;
-    if (const auto hit = scene.surface_hit(Ray{Vec3(x, y, top), Vec3(0, 0, -1)})) {
-      if (std::abs(hit->normal.z()) < 0.7 || hit->position.z() > ground + 1.5) continue;  // a roof or a wall
-      z = hit->position.z();
+    double z = ground_hit(x, y, ground);
+    if (std::isnan(z)) continue;  // a roof or a wall
+    if (std::isinf(z)) {
+      if (has_ground) continue;  // outside the model's ground
+      z = ground;
     }
     const Vec3 p(x, y, z + 0.05);
     if (scene.intersect(Ray{p, Vec3(0, 0, 1)})) continue;  // under something

@@ -5,9 +5,11 @@
 //
 // Street: xy uniform over the mesh's bounding box; a vertical ray from above finds the highest
 // surface there. Where that is nearly horizontal and within 1.5 m of the local ground level (the
-// lowest vertex within 25 m), the point is 5 cm above it; where nothing lies below (a model
-// without terrain) it is 5 cm above the local ground level; roofs, and points with anything above
-// them, are rejected. Facade: a triangle whose normal is within 6° of horizontal, chosen by area,
+// lowest vertex within 25 m), the point is 5 cm above it; where nothing lies below, the point is
+// 5 cm above the local ground level in a model without a ground surface (buildings alone) and
+// rejected in a model with one (terrain, roads or water under at least a tenth of 400 trial
+// places: there nothing below means outside the model or in a hole of its ground); roofs, and
+// points with anything above them, are rejected. Facade: a triangle whose normal is within 6° of horizontal, chosen by area,
 // a point uniform on it.
 #include <cstdint>
 #include <vector>
