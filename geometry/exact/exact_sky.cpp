@@ -532,28 +532,50 @@ void ExactSky::walk() {
     patch_seen_.assign(set_.height_patches.patches.size(), 0);
     patch_whole_.assign(set_.height_patches.patches.size(), 0);
   }
+  if (seen_.size() != set_.occluders.size()) seen_.assign(set_.occluders.size(), 0);
   if (++generation_ == 0) {
     std::fill(opened_.begin(), opened_.end(), 0), generation_ = 1;
+    std::fill(seen_.begin(), seen_.end(), 0);
     std::fill(patch_seen_.begin(), patch_seen_.end(), 0), std::fill(patch_whole_.begin(), patch_whole_.end(), 0);
   }
   deferred_.clear();
   small_.clear();
-  // One occluder: a height patch's boundary first (once), then the occluder unless that was all.
+  // One occluder (once): the walls under it first where it floats above the point (so that a
+  // roof finds the wall under its eave in the union and joins it, instead of floating above it
+  // until the wall comes), then a height patch's boundary (once), then the occluder unless that
+  // was all.
+  const auto project_once = [&](std::uint32_t k) {
+    if (seen_[k] == generation_) return;
+    seen_[k] = generation_;
+    const std::size_t before = sky_.splices();
+    project(set_.occluders[k]);
+    changing_ += sky_.splices() != before;
+  };
+  const auto supports_first = [&](std::uint32_t k) {
+    const Occluder& o = set_.occluders[k];
+    for (std::uint32_t i = 0; i < o.count; ++i)
+      if (o.v[i].z() <= p_.z()) return;  // reaches down to the point's height
+    for (std::uint32_t j = set_.support_first[k]; j < set_.support_first[k + 1]; ++j) project_once(set_.support[j]);
+  };
   const auto visit = [&](std::uint32_t k) {
+    if (seen_[k] == generation_) return;
     const Occluder& o = set_.occluders[k];
     if (o.patch != kNoPatch) {
       if (patch_seen_[o.patch] != generation_) {
         patch_seen_[o.patch] = generation_;
-        if (project_patch(set_.height_patches.patches[o.patch])) patch_whole_[o.patch] = generation_;
+        const HeightPatch& patch = set_.height_patches.patches[o.patch];
+        const std::uint32_t* member = set_.height_patches.members.data() + patch.first_member;
+        for (std::uint32_t j = 0; j < patch.member_count; ++j) supports_first(member[j]);
+        if (project_patch(patch)) patch_whole_[o.patch] = generation_;
       }
       if (patch_whole_[o.patch] == generation_) {
         ++skipped_;
         return;
       }
+    } else if (o.xy_sign != 0) {
+      supports_first(k);
     }
-    const std::size_t before = sky_.splices();
-    project(o);
-    changing_ += sky_.splices() != before;
+    project_once(k);
   };
   push(0);
   for (;;) {

@@ -102,6 +102,7 @@ class ExactSky {
   std::vector<std::uint32_t> small_;         // occluders seen small, projected last
   double small_fraction_ = 5e-4;             // twice the solid angle (sr) below which an occluder is small
   std::vector<std::uint32_t> opened_;        // per node: == generation_ once it must be opened
+  std::vector<std::uint32_t> seen_;          // per occluder: == generation_ once projected (or tried)
   std::vector<std::uint32_t> patch_seen_;    // per height patch: == generation_ once projected
   std::vector<std::uint32_t> patch_whole_;   // == generation_ when that projection was all of it
   std::vector<Vec3> patch_d_;                // scratch: boundary vertices relative to the point

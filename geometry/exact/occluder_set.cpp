@@ -195,6 +195,52 @@ void build_bvh(OccluderSet& set, const std::vector<std::uint32_t>& component) {
   set.occluders.swap(sorted);
 }
 
+// The walls under each non-vertical occluder's edges (OccluderSet::support): vertical occluders
+// sharing an edge with it (bit-equal end points) whose highest vertex is no higher than that edge.
+void build_supports(OccluderSet& set) {
+  const std::vector<Occluder>& occ = set.occluders;
+  const std::size_t n = occ.size();
+  std::vector<Vec3> flat;
+  flat.reserve(4 * n);
+  std::vector<std::uint32_t> first(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = 0; k < occ[i].count; ++k) flat.push_back(occ[i].v[k]);
+    first[i + 1] = first[i] + occ[i].count;
+  }
+  const std::vector<std::uint32_t> id = weld_positions(flat);
+  // Every edge of a vertical occluder, by its welded end points, sorted.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> wall_edges;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (occ[i].upper_count < 2) continue;
+    for (std::uint32_t k = 0; k < occ[i].count; ++k)
+      wall_edges.emplace_back(edge_key(id[first[i] + k], id[first[i] + (k + 1) % occ[i].count]), i);
+  }
+  std::sort(wall_edges.begin(), wall_edges.end());
+  set.support_first.assign(n + 1, 0);
+  set.support.clear();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Occluder& o = occ[i];
+    if (o.xy_sign != 0 && !wall_edges.empty()) {
+      const std::size_t start = set.support.size();
+      for (std::uint32_t k = 0; k < o.count; ++k) {
+        const Vec3& a = o.v[k];
+        const Vec3& b = o.v[(k + 1) % o.count];
+        const std::uint64_t key = edge_key(id[first[i] + k], id[first[i] + (k + 1) % o.count]);
+        auto it = std::lower_bound(wall_edges.begin(), wall_edges.end(), std::pair<std::uint64_t, std::uint32_t>(key, 0));
+        for (; it != wall_edges.end() && it->first == key; ++it) {
+          const Occluder& w = occ[it->second];
+          double top = -1e300;
+          for (std::uint32_t j = 0; j < w.count; ++j) top = std::max(top, w.v[j].z());
+          if (top > std::max(a.z(), b.z())) continue;  // rises above the edge: not under it
+          if (std::find(set.support.begin() + std::ptrdiff_t(start), set.support.end(), it->second) == set.support.end())
+            set.support.push_back(it->second);
+        }
+      }
+    }
+    set.support_first[i + 1] = std::uint32_t(set.support.size());
+  }
+}
+
 }  // namespace
 
 OccluderSet build_occluder_set(const TriangleSoup& soup) {
@@ -305,6 +351,7 @@ OccluderSet build_occluder_set(const TriangleSoup& soup) {
     component[i] = linked.find(id[soup.triangles[set.occluders[i].triangle][0]]);
   build_bvh(set, component);
   set.height_patches = build_height_patches(set.occluders);
+  build_supports(set);
   return set;
 }
 

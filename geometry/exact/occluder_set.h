@@ -55,6 +55,11 @@ struct OccluderSet {
   std::size_t merged_regions = 0;        // regions of ≥ 3 coplanar triangles merged into a convex polygon
   double max_z = -1e300;                 // metres, the highest vertex
   HeightPatches height_patches;          // groups of occluders projected as one first
+  // Per non-vertical occluder, the vertical ones (walls) that share one of its edges and lie
+  // below it: support[support_first[i] .. support_first[i + 1]). The walk projects them before
+  // an occluder floating above the point (the wall under a roof's eave before the roof), an order
+  // that changes what the union costs, not what it is.
+  std::vector<std::uint32_t> support_first, support;
 };
 
 OccluderSet build_occluder_set(const TriangleSoup& soup);

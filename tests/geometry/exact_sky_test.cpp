@@ -22,6 +22,7 @@
 #include "geometry/bands/sky_integral.h"
 #include "geometry/core/input_error.h"
 #include "geometry/exact/exact_sky.h"
+#include "geometry/exact/occluder_set.h"
 #include "geometry/support/lambert_oracle.h"
 #include "geometry/support/scene_generators.h"
 #include "geometry/visibility/sky_visibility.h"
@@ -163,6 +164,64 @@ BOOST_AUTO_TEST_CASE(open_bottom_boxes_on_a_ground_with_shared_walls_and_t_junct
     BOOST_TEST(f.svf == 0.0);
     BOOST_TEST(f.sky_exposure == 0.0);
   }
+}
+
+// Pitched roofs on open-bottom houses: from the street a roof floats above the point until the
+// wall under its eave is in the union, so the walk projects that wall first (OccluderSet::support:
+// the walls sharing an edge with a non-vertical occluder and lying below it). Which walls those
+// are (the gable walls under a roof plane's rake edges count too; a back wall rising to a parapet
+// above the eave shares no edge with the roof), and that the result is the oracle's.
+BOOST_AUTO_TEST_CASE(pitched_roofs_and_the_walls_under_their_eaves) {
+  gen::Rng rng(11);
+  TriangleSoup soup;
+  double x = -15;
+  for (int h = 0; h < 5; ++h) {
+    const double w = rng.uniform(4, 7), eave = rng.uniform(5, 9), ridge = eave + rng.uniform(1, 4);
+    const Vec3 a(x, -4, 0), b(x + w, -4, 0), c(x + w, 4, 0), d(x, 4, 0);
+    const Vec3 ae(x, -4, eave), be(x + w, -4, eave), ce(x + w, 4, eave), de(x, 4, eave);
+    const Vec3 r0(x, 0, ridge), r1(x + w, 0, ridge);
+    add_quad(soup, a, b, be, ae);  // front wall, under the front roof plane's eave
+    if (h == 3) {                  // the back wall rising a metre above the eave (a parapet)
+      add_quad(soup, c, d, de + Vec3(0, 0, 1), ce + Vec3(0, 0, 1));
+    } else {
+      add_quad(soup, c, d, de, ce);  // back wall
+    }
+    add_quad(soup, b, c, ce, be), add_triangle(soup, be, ce, r1);  // gable walls, up to the ridge
+    add_quad(soup, d, a, ae, de), add_triangle(soup, de, ae, r0);
+    add_quad(soup, ae, be, r1, r0);  // the two roof planes
+    add_quad(soup, r0, r1, ce, de);
+    x += w + rng.uniform(0, 3);
+  }
+  const Scene scene(soup);
+  const OccluderSet& set = scene.occluders();
+  std::size_t roofs = 0, on_eave_walls = 0;
+  for (std::size_t i = 0; i < set.occluders.size(); ++i) {
+    const Occluder& o = set.occluders[i];
+    if (o.xy_sign == 0) {
+      BOOST_TEST(set.support_first[i] == set.support_first[i + 1]);  // walls have none
+      continue;
+    }
+    ++roofs;
+    bool eave_wall = false;  // a support in the front or back wall's plane
+    double edge_top = -1e300;
+    for (std::uint32_t k = 0; k < o.count; ++k) edge_top = std::max(edge_top, o.v[k].z());
+    for (std::uint32_t j = set.support_first[i]; j < set.support_first[i + 1]; ++j) {
+      const Occluder& w = set.occluders[set.support[j]];
+      BOOST_TEST(w.xy_sign == 0);
+      for (std::uint32_t k = 0; k < w.count; ++k) BOOST_TEST(w.v[k].z() <= edge_top);  // below the roof
+      bool in_plane = true;                                                            // every vertex at y = ±4
+      for (std::uint32_t k = 0; k < w.count; ++k) in_plane = in_plane && w.v[k].y() == w.v[0].y() && std::abs(w.v[k].y()) == 4.0;
+      eave_wall = eave_wall || in_plane;
+    }
+    on_eave_walls += eave_wall;
+  }
+  BOOST_TEST(roofs == 10u);
+  BOOST_TEST(on_eave_walls == 9u);  // every roof plane on the wall under its eave but the parapet's
+  std::vector<QueryPoint> pts;
+  for (int i = 0; i < 12; ++i) pts.push_back({Vec3{rng.uniform(-20, 25), rng.uniform(-14, -5), 0.05}, Vec3(0, 0, 1)});
+  for (int i = 0; i < 6; ++i) pts.push_back({Vec3{rng.uniform(-20, 25), rng.uniform(5, 14), rng.uniform(0, 3)}, Vec3(0, 0, 1)});
+  pts.push_back({Vec3(-13, -4.05, 2), Vec3(0, -1, 0)});  // on a facade, facing the street
+  check_against_oracle(soup, pts, "pitched roofs");
 }
 
 BOOST_AUTO_TEST_CASE(overhangs_bridges_and_balconies) {
