@@ -209,8 +209,9 @@ BOOST_AUTO_TEST_CASE(pitched_roofs_and_the_walls_under_their_eaves) {
       const Occluder& w = set.occluders[set.support[j]];
       BOOST_TEST(w.xy_sign == 0);
       for (std::uint32_t k = 0; k < w.count; ++k) BOOST_TEST(w.v[k].z() <= edge_top);  // below the roof
-      bool in_plane = true;                                                            // every vertex at y = ±4
-      for (std::uint32_t k = 0; k < w.count; ++k) in_plane = in_plane && w.v[k].y() == w.v[0].y() && std::abs(w.v[k].y()) == 4.0;
+      // In the front or back wall's plane: every vertex at y = −4, or every one at y = 4.
+      bool in_plane = std::abs(w.v[0].y()) == 4.0;
+      for (std::uint32_t k = 1; k < w.count; ++k) in_plane = in_plane && w.v[k].y() == w.v[0].y();
       eave_wall = eave_wall || in_plane;
     }
     on_eave_walls += eave_wall;

@@ -37,23 +37,26 @@ std::vector<QueryPoint> real_mesh_street_points(const Scene& scene, std::size_t 
     if (std::abs(hit->normal.z()) < 0.7 || hit->position.z() > ground + 1.5) return std::nan("");  // a roof or a wall
     return hit->position.z();
   };
+  // A random place: its xy and local ground level; false where no vertex lies within 25 m.
+  double x = 0, y = 0, ground = 0;
+  const auto draw = [&] {
+    x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
+    ground = local_ground(scene.soup(), Vec3(x, y, 0), 25.0);
+    return std::isfinite(ground);
+  };
   // A model with a ground surface (terrain, roads, water: at least a tenth of the places with
   // vertices nearby have one below) gets street points on it only — where nothing lies below is
   // outside the model or in a hole of its ground; a model without one (buildings alone) gets them
   // at its local ground level.
   std::size_t tried = 0, on_ground = 0;
   for (std::size_t attempt = 0; attempt < 20000 && tried < 400; ++attempt) {
-    const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
-    const double ground = local_ground(scene.soup(), Vec3(x, y, 0), 25.0);
-    if (!std::isfinite(ground)) continue;
+    if (!draw()) continue;
     ++tried;
     on_ground += std::isfinite(ground_hit(x, y, ground));
   }
   const bool has_ground = 10 * on_ground >= tried && on_ground > 0;
   for (std::size_t attempt = 0; attempt < 200 * count && out.size() < count; ++attempt) {
-    const double x = rng.uniform(lo.x(), hi.x()), y = rng.uniform(lo.y(), hi.y());
-    const double ground = local_ground(scene.soup(), Vec3(x, y, 0), 25.0);
-    if (!std::isfinite(ground)) continue;
+    if (!draw()) continue;
     double z = ground_hit(x, y, ground);
     if (std::isnan(z)) continue;  // a roof or a wall
     if (std::isinf(z)) {

@@ -9,8 +9,8 @@
 // 5 cm above the local ground level in a model without a ground surface (buildings alone) and
 // rejected in a model with one (terrain, roads or water under at least a tenth of 400 trial
 // places: there nothing below means outside the model or in a hole of its ground); roofs, and
-// points with anything above them, are rejected. Facade: a triangle whose normal is within 6° of horizontal, chosen by area,
-// a point uniform on it.
+// points with anything above them, are rejected. Facade: a triangle whose normal is within 6° of
+// horizontal, chosen by area, a point uniform on it.
 #include <cstdint>
 #include <vector>
 
