@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "geometry/bands/band_rule.h"
@@ -47,6 +48,10 @@ struct BandState {
   bool from_breakpoints = false;      // made by a breakpoint split: the next split bisects
   double cached_error = -1;           // band_error() once computed (its lines never change), else −1
   double cached_exposure_error = -1;  // band_exposure_error(), with cached_error
+  double unseen_error = 0;            // bound of what geometry between its lines can hide, SVF units
+  double unseen_exposure_error = 0;   // the same, exposure units
+  double unseen_cut = -1;             // δ through the largest of that geometry (−1: none)
+  double unseen_largest = 0;          // its bound
 };
 
 }  // namespace
@@ -95,6 +100,14 @@ struct BandVisibility::Impl {
   // line's occlusion: where f(δ) steps (method.md §2). Refinement splits step bands there.
   std::vector<double> breakpoints;
   double breakpoint_span = 0;  // edges spanning less than this pseudo-angle count as parallel
+  // Geometry that no sample line meets (refinement only): nodes and triangles in front of the face
+  // and above the horizon whose pencil span holds no plane, with their conservative α-ranges
+  // (pseudo-angles). Each can hide at most its span's share of the band it lies in.
+  struct Unseen {
+    double plo, phi, alo, ahi;
+  };
+  std::vector<Unseen> unseen;
+  bool record_unseen = false;
   std::size_t triangle_tests = 0;
   std::size_t total_planes = 0;
 
@@ -137,6 +150,7 @@ struct BandVisibility::Impl {
     abs_local_from_world = local_from_world.cwiseAbs();
     plane_count = 0;
     triangle_tests = 0;
+    record_unseen = false;
   }
 
   int add_plane(double s, double delta) {
@@ -347,8 +361,11 @@ struct BandVisibility::Impl {
     walk_bvh([&](const BvhNode& node, const LocalBox& b, double plo, double phi) {
       int j0, j1;
       plane_range(plo, phi, 0, static_cast<int>(active_keys.size()), j0, j1);
-      if (j0 >= j1) return Visit::kSkip;
       double alo, ahi;
+      if (j0 >= j1) {
+        if (record_unseen && alpha_range(b, alo, ahi)) unseen.push_back({plo, phi, alo, ahi});
+        return Visit::kSkip;
+      }
       if (!alpha_range(b, alo, ahi)) return Visit::kSkip;  // only in the axis tails
       if (covered_on_all(j0, j1, alo, ahi)) return Visit::kSkip;
       if (node.count == 0) return Visit::kDescend;
@@ -406,14 +423,21 @@ struct BandVisibility::Impl {
       triangle_x(L, tb);
       if (!alpha_range(tb, alo, ahi)) return;
       plane_range(plo, phi, j0, j1, k0, k1);
-      if (k0 >= k1) return;
+      if (k0 >= k1) {
+        if (record_unseen) unseen.push_back({plo, phi, alo, ahi});
+        return;
+      }
     }
     bool contributed = false;
     bool edge_on_checked = false;
+    bool met = false;  // some plane crossed it, or was hidden over its α-range
     for (int j = k0; j < k1; ++j) {
       const ActivePlane& pl = act[j];
       std::vector<Span>& occluded = *pl.occluded;
-      if (covered(occluded, alo, ahi)) continue;  // already hidden on this line (front-to-back)
+      if (covered(occluded, alo, ahi)) {  // already hidden on this line (front-to-back)
+        met = true;
+        continue;
+      }
       if (!edge_on_checked) {
         // Exact: a triangle whose plane contains the point is seen edge-on: it hides a set of
         // measure zero (this is also what keeps a face from hiding the sky above itself).
@@ -423,10 +447,21 @@ struct BandVisibility::Impl {
       }
       double ea[2], eb[2];
       if (!crossing_segment(pl, tr, ea, eb)) continue;
+      met = true;
       if (add_segment(occluded, ea[0], eb[0], ea[1], eb[1])) {
         contributed = true;
         blocks[j / kBlock].dirty = true;
       }
+    }
+    if (!met && !own_ranges && record_unseen) {
+      // Between the leaf's planes: recorded with its own ranges (whether a plane lies inside
+      // them is decided with all the point's planes, unseen_bounds).
+      double plo, phi;
+      LocalBox tb;
+      triangle_hz(L, tb);
+      triangle_x(L, tb);
+      if (pencil_span(tb.h_lo, tb.h_hi, tb.z_lo, tb.z_hi, plo, phi) && alpha_range(tb, alo, ahi))
+        unseen.push_back({plo, phi, alo, ahi});
     }
     if (contributed && breakpoint_span > 0) {
       for (int k = 0; k < 3; ++k) {
@@ -587,6 +622,71 @@ struct BandVisibility::Impl {
 
   double s_of(double d) const { return std::sin(d - frame.beta_rad); }
 
+  // Per band, a bound of what the geometry no line meets can hide (Impl::unseen): a node or
+  // triangle whose pencil span lies between two neighbouring lines, both clear of occlusion over
+  // its α-range, hides at most the directions of that span and that α-range, ∫∫ sin²α cos(δ − β)
+  // dα dδ / π of the SVF and ∫∫ sin α dα dδ / 2π of the exposure. A building floating just above
+  // the point's horizontal, seen between the horizon's line (which passes under it) and the next
+  // (which passes over it), is the case. Records a later line meets are dropped: they were
+  // traversed with it. Each band's bounds are capped at everything it holds.
+  static bool clear(const std::vector<Span>& v, double lo, double hi) {
+    const auto it = std::lower_bound(v.begin(), v.end(), lo, [](const Span& s, double x) { return s.hi < x; });
+    return it == v.end() || it->lo > hi;
+  }
+  std::vector<std::pair<double, int>> plane_keys;  // scratch: (pdelta, plane) of every plane, sorted
+  std::vector<int> band_by_d0;                     // scratch
+  void unseen_bounds(std::vector<BandState>& bands) {
+    for (BandState& b : bands) b.unseen_error = b.unseen_exposure_error = 0, b.unseen_cut = -1, b.unseen_largest = 0;
+    if (unseen.empty()) return;
+    // A node skipped in one pass is skipped again in the next (with the same box): once each.
+    std::sort(unseen.begin(), unseen.end(), [](const Unseen& a, const Unseen& b) {
+      return std::tie(a.plo, a.phi, a.alo, a.ahi) < std::tie(b.plo, b.phi, b.alo, b.ahi);
+    });
+    unseen.erase(std::unique(unseen.begin(), unseen.end(),
+                             [](const Unseen& a, const Unseen& b) {
+                               return a.plo == b.plo && a.phi == b.phi && a.alo == b.alo && a.ahi == b.ahi;
+                             }),
+                 unseen.end());
+    constexpr double kMargin = 1e-9;  // as plane_range
+    plane_keys.clear();
+    for (std::size_t i = 0; i < plane_count; ++i) plane_keys.emplace_back(planes[i].pdelta, static_cast<int>(i));
+    std::sort(plane_keys.begin(), plane_keys.end());
+    band_by_d0.resize(bands.size());
+    for (std::size_t i = 0; i < bands.size(); ++i) band_by_d0[i] = static_cast<int>(i);
+    std::sort(band_by_d0.begin(), band_by_d0.end(), [&](int a, int b) { return bands[a].d0 < bands[b].d0; });
+    std::size_t kept = 0;
+    for (const Unseen& u : unseen) {
+      const auto above = std::lower_bound(plane_keys.begin(), plane_keys.end(), std::make_pair(u.plo - kMargin, -1));
+      if (above != plane_keys.end() && above->first <= u.phi + kMargin) continue;  // a line meets it now
+      unseen[kept++] = u;
+      // Counted only where both neighbouring lines are clear over its α-range: where either meets
+      // something there, the lines see the change (a roof between two lines rises from a wall
+      // the lower one meets) and their variation estimates it.
+      if (above == plane_keys.begin() || above == plane_keys.end() ||
+          !clear(planes[(above - 1)->second].occluded, u.alo, u.ahi) || !clear(planes[above->second].occluded, u.alo, u.ahi))
+        continue;
+      const double d_lo = angle_of_pseudo(u.plo), d_hi = angle_of_pseudo(u.phi);
+      const double d_mid = 0.5 * (d_lo + d_hi);
+      const auto it =
+          std::upper_bound(band_by_d0.begin(), band_by_d0.end(), d_mid, [&](double d, int b) { return d < bands[b].d0; });
+      if (it == band_by_d0.begin()) continue;
+      BandState& b = bands[*(it - 1)];
+      const double lo = std::max(d_lo, b.d0), hi = std::min(d_hi, b.d1);
+      if (!(hi > lo)) continue;
+      const double a0 = angle_of_pseudo(u.alo), a1 = angle_of_pseudo(u.ahi);
+      const double svf = (s_of(hi) - s_of(lo)) * (uniform_sky_primitive(a1) - uniform_sky_primitive(a0)) / kPi;
+      const double exposure = (hi - lo) * (std::cos(a0) - std::cos(a1)) / (2 * kPi);
+      b.unseen_error += svf;
+      b.unseen_exposure_error += exposure;
+      if (std::max(svf, exposure) > b.unseen_largest) b.unseen_largest = std::max(svf, exposure), b.unseen_cut = 0.5 * (lo + hi);
+    }
+    unseen.resize(kept);
+    for (BandState& b : bands) {
+      b.unseen_error = std::min(b.unseen_error, (s_of(b.d1) - s_of(b.d0)) * 0.5);  // ∫ sin²α dα over [0, π] = π/2
+      b.unseen_exposure_error = std::min(b.unseen_exposure_error, (b.d1 - b.d0) / kPi);
+    }
+  }
+
   void compute(const QueryPoint& q, VisibilityCache::PointResult& out) {
     begin_point(q);
     out.normal = q.normal;
@@ -632,6 +732,8 @@ struct BandVisibility::Impl {
     // An edge counts as parallel to the axis when its pencil span is below 1/8 of the narrowest
     // initial band's: then f(δ) changes within a small part of one band, like a step.
     breakpoint_span = 0.125 * narrowest_band_pseudo(bands);
+    unseen.clear();
+    record_unseen = true;
     run_pass(0);
     refine_bands(bands);
     std::sort(bands.begin(), bands.end(), [](const BandState& a, const BandState& b) { return a.d0 < b.d0; });
@@ -696,17 +798,19 @@ struct BandVisibility::Impl {
       // Both estimated totals, the SVF's and the exposure's, must be within the tolerance; a
       // band's error for the choice of splits is the larger share of either.
       double total_svf = 0, total_exposure = 0;
+      unseen_bounds(bands);
       for (BandState& b : bands) {
         if (b.cached_error < 0) {
           b.cached_error = band_error(b);
           b.cached_exposure_error = band_exposure_error(b);
         }
-        total_svf += b.cached_error;
-        total_exposure += b.cached_exposure_error;
+        total_svf += b.cached_error + b.unseen_error;
+        total_exposure += b.cached_exposure_error + b.unseen_exposure_error;
       }
       if (total_svf <= kSafety * opt.tolerance && total_exposure <= kSafety * opt.tolerance) return;
       const double total = std::max(total_svf, total_exposure);
-      for (BandState& b : bands) b.error = std::max(b.cached_error, b.cached_exposure_error);
+      for (BandState& b : bands)
+        b.error = std::max(b.cached_error + b.unseen_error, b.cached_exposure_error + b.unseen_exposure_error);
       std::vector<int> order(bands.size());
       for (std::size_t i = 0; i < bands.size(); ++i) order[i] = static_cast<int>(i);
       std::sort(order.begin(), order.end(),
@@ -722,6 +826,21 @@ struct BandVisibility::Impl {
         if (remaining <= 0.5 * kSafety * opt.tolerance) break;
         BandState& b = bands[i];
         if (b.error <= 0 || b.depth >= opt.max_refine_depth) continue;
+        if (b.unseen_cut > b.d0 && b.unseen_cut < b.d1 &&
+            std::max(b.unseen_error, b.unseen_exposure_error) > std::max(b.cached_error, b.cached_exposure_error)) {
+          // What no line meets dominates: cut the band through the largest of it (a line there
+          // meets it, or its ancestors' boxes give way to tighter ones).
+          remaining -= std::max(b.unseen_error, b.unseen_exposure_error);
+          const double dc = b.unseen_cut;
+          const int cut = add_plane_at(dc);
+          BandState left{b.d0, dc, b.e0, -1, cut, 0, b.depth + 1};
+          BandState right{dc, b.d1, cut, -1, b.e1, 0, b.depth + 1};
+          left.c = add_plane_at(0.5 * (left.d0 + left.d1));
+          right.c = add_plane_at(0.5 * (right.d0 + right.d1));
+          b = left;
+          added.push_back(right);
+          continue;
+        }
         remaining -= 0.5 * b.error;
         if (split_at_breakpoints(b, added)) continue;
         const double dm = 0.5 * (b.d0 + b.d1);
