@@ -174,7 +174,11 @@ MapGrid grid_from_dsm(const MapArgs& a, std::unique_ptr<Scene>& scene) {
   f.y0 = dsm.geotransform[3];
   f.dy = dsm.geotransform[5];
   f.heights = dsm.values;
-  scene = std::make_unique<Scene>(height_field_mesh(f, height_field_floor(f)));
+  try {
+    scene = std::make_unique<Scene>(height_field_mesh(f, height_field_floor(f)));
+  } catch (const InputError& e) {  // the field's own checks, after the reader's: named by the file
+    throw InputError(a.dsm + ": " + e.what());
+  }
   MapGrid m;
   m.columns = dsm.columns;
   m.rows = dsm.rows;
