@@ -324,6 +324,14 @@ class EpwParser {
   WeatherRecord parse_record(std::size_t line, std::string_view text) {
     if (trim(text).empty()) throw InputError(name_ + ":" + std::to_string(line) + ": empty line between the weather records");
     fields_ = split_fields(text);
+    // Empty fields after field 35 (a trailing comma, as spreadsheet exports write): dropped, and
+    // counted for one warning. A value there is refused: it may mean a field inserted or shifted.
+    if (fields_.size() > static_cast<std::size_t>(kRecordFields) &&
+        std::all_of(fields_.begin() + kRecordFields, fields_.end(), [](std::string_view f) { return trim(f).empty(); })) {
+      if (trailing_empty_records_++ == 0)
+        first_trailing_empty_ = "line " + std::to_string(line) + ": " + std::to_string(fields_.size()) + " fields";
+      fields_.resize(kRecordFields);
+    }
     if (fields_.size() < static_cast<std::size_t>(kOldRecordFields) || fields_.size() > static_cast<std::size_t>(kRecordFields))
       throw InputError(name_ + ":" + std::to_string(line) + ": the record has " + std::to_string(fields_.size()) +
                        " fields; an EPW record has " + std::to_string(kRecordFields) +
@@ -414,6 +422,10 @@ class EpwParser {
                   std::to_string(diffuse_excess_) + " of " + std::to_string(daylight_) + " daylight records (first on " +
                   first_diffuse_excess_ + "); global includes diffuse, so fields 14 and 16 may be swapped or wrong");
     if (!location_extra_.empty()) w.push_back(name_ + ":1: " + location_extra_);
+    if (trailing_empty_records_ > 0)
+      w.push_back(name_ + ": " + std::to_string(trailing_empty_records_) +
+                  " record(s) with empty fields after field 35 (a trailing comma), ignored (first on " + first_trailing_empty_ +
+                  ")");
     if (short_records_ > 0)
       w.push_back(name_ + ": " + std::to_string(short_records_) + " record(s) without fields 33-35 (albedo, precipitation), " +
                   "as in older EPW files (first on " + first_short_record_ + "); the ground albedo there is --albedo or " +
@@ -437,7 +449,9 @@ class EpwParser {
   std::size_t previous_line_ = 0;
   std::size_t daylight_ = 0;
   std::size_t diffuse_excess_ = 0, invalid_albedo_ = 0, zero_albedo_ = 0, false_leap_days_ = 0, short_records_ = 0;
+  std::size_t trailing_empty_records_ = 0;
   std::string first_diffuse_excess_, first_invalid_albedo_, first_false_leap_day_, first_short_record_, location_extra_;
+  std::string first_trailing_empty_;
 };
 
 }  // namespace

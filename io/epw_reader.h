@@ -5,7 +5,9 @@
 // (EPW) Data Dictionary" (NREL/EnergyPlus, doc/auxiliary-programs/src/weather-converter-program/
 // energyplus-weather-file-epw-data-dictionary.tex). Eight header lines — LOCATION first, DATA
 // PERIODS eighth — then one record per hour of 35 comma-separated fields (32 in files of older
-// converters, which end after the present weather codes: no albedo or precipitation; a warning). Fields used here
+// converters, which end after the present weather codes: no albedo or precipitation; a warning;
+// empty fields after the 35th, a trailing comma, are dropped with a warning, a value there is an
+// InputError: it may mean a field inserted or shifted). Fields used here
 // (1-based): 1–4 year, month, day, hour (hour h covers (h−1, h] local standard time); 5 minute;
 // 8 dew point; 14–16 global horizontal, direct normal and diffuse horizontal radiation (Wh/m²
 // over the hour); 17–19 the matching illuminances (lux); 33 albedo. LOCATION fields, counted

@@ -364,6 +364,32 @@ BOOST_AUTO_TEST_CASE(older_records_of_32_fields_are_read_without_albedo) {
   BOOST_TEST(warned);
 }
 
+BOOST_AUTO_TEST_CASE(records_ending_in_a_comma_are_read_with_a_warning) {
+  // Spreadsheet exports end each line with a separator: an empty 36th field (or more), dropped;
+  // the values are those of the same file without it.
+  TempDir d;
+  EpwText e = two_days();
+  e.field(3, 14) = "120", e.field(3, 15) = "300", e.field(3, 16) = "80";
+  std::string text;
+  for (const auto& h : e.header) text += h + "\n";
+  for (std::size_t i = 0; i < e.records.size(); ++i) {
+    for (std::size_t k = 0; k < e.records[i].size(); ++k) text += (k ? "," : "") + e.records[i][k];
+    text += i < 5 ? ",\n" : "\n";
+  }
+  const fs::path p = write(d, "comma.epw", text);
+  const WeatherSeries s = read_epw(p);
+  const WeatherSeries plain = read_epw(write(d, "plain.epw", e.text()));
+  BOOST_TEST(s.records.size() == plain.records.size());
+  BOOST_TEST(s.records[3].ghi_Wh_m2 == 120.0);
+  BOOST_TEST(s.records[3].dni_Wh_m2 == 300.0);
+  BOOST_TEST((s.records[3].albedo == plain.records[3].albedo));
+  bool warned = false;
+  for (const auto& m : s.warnings)
+    warned |= contains(m, p.string()) && contains(m, "5 record(s) with empty fields after field 35") &&
+              contains(m, "line 9: 36 fields");
+  BOOST_TEST(warned);
+}
+
 BOOST_AUTO_TEST_CASE(a_location_line_with_an_extra_field_reads_the_nine_named_ones) {
   // Some writers append a climate zone to LOCATION (e.g. "...,-8.0,30.0,Csb").
   TempDir d;
@@ -534,6 +560,9 @@ BOOST_AUTO_TEST_CASE(structural_errors_name_file_and_line) {
   std::string text36 = full;
   text36.replace(text36.find(line12), line12.size(), line12 + ",1");
   check("fields36.epw", text36, {":12:", "has 36 fields"});
+  std::string text37 = full;
+  text37.replace(text37.find(line12), line12.size(), line12 + ", ,2");
+  check("fields37.epw", text37, {":12:", "has 37 fields"});
 
   // An empty line between records (empty lines at the end are fine, see above).
   std::string gap = full;
