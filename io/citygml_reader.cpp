@@ -360,7 +360,15 @@ AdeElements blank_ade_elements(std::string& bytes) {
       const std::size_t colon = qname.find(':');
       const std::string prefix = colon == std::string::npos ? "" : qname.substr(0, colon);
       const auto binding = std::find_if(bindings.rbegin(), bindings.rend(), [&](const auto& b) { return b.first == prefix; });
-      if (!e.inside_ade && binding != bindings.rend() && !binding->second.empty() && !is_citygml_namespace(binding->second)) {
+      const std::string_view local = std::string_view(qname).substr(colon == std::string::npos ? 0 : colon + 1);
+      if (!e.inside_ade && local == "externalReference" && binding != bindings.rend() &&
+          (binding->second == "http://www.opengis.net/citygml/2.0" || binding->second == "http://www.opengis.net/citygml/1.0")) {
+        // core:externalReference (a link to another data set, no geometry; every building of the
+        // Bavarian and other cadastral LoD2 files has one): libcitygml 2.4 fails on its
+        // core:informationSystem ("Expected start tag <core:externalreference>"), so it goes too.
+        e.ade = true;
+      } else if (!e.inside_ade && binding != bindings.rend() && !binding->second.empty() &&
+                 !is_citygml_namespace(binding->second)) {
         e.ade = true;
         auto ns = std::find_if(found.begin(), found.end(), [&](const AdeNamespace& a) { return a.uri == binding->second; });
         if (ns == found.end()) ns = found.insert(found.end(), {binding->second, {}});

@@ -288,6 +288,30 @@ BOOST_AUTO_TEST_CASE(box_areas_materials_and_objects_in_closed_form) {
   }
 }
 
+// core:externalReference (a link to a cadastre or another data set; every building of the Bavarian
+// LoD2 files carries one, with core:informationSystem and core:externalObject) holds no geometry:
+// the building reads as it does without it, in CityGML 2.0 and 1.0.
+BOOST_AUTO_TEST_CASE(external_references_are_skipped) {
+  const std::string plain = box_building("box1", kBox);
+  const std::string reference =
+      "<core:externalReference><core:informationSystem>http://www.adv-online.de</core:informationSystem>"
+      "<core:externalObject><core:name>DEBY_LOD2_4906970</core:name></core:externalObject></core:externalReference>";
+  const std::string tag = "<bldg:Building gml:id=\"box1\">";
+  std::string with = plain;
+  with.replace(with.find(tag), tag.size(), tag + reference);
+  for (const std::string version : {"2.0", "1.0"}) {
+    const TriangleSoup expected =
+        read_citygml(write_file("plain" + version + ".gml", document(version, kProjected, member(plain))));
+    CityGmlReport report;
+    const TriangleSoup s =
+        read_citygml(write_file("reference" + version + ".gml", document(version, kProjected, member(with))), {}, &report);
+    BOOST_TEST(s.triangle_count() == expected.triangle_count());
+    BOOST_TEST((s.vertices == expected.vertices));
+    BOOST_TEST(report.objects == 1u);
+    BOOST_TEST(area_by_material(s) == area_by_material(expected));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
   const fs::path file = write_file("box_lods.gml", document("2.0", kProjected, member(box_building("box1", kBox))));
   CityGmlReport report;
