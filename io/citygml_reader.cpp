@@ -79,6 +79,7 @@ struct FileScan {
 // instructions). DOCTYPEs are refused: CityGML uses none, and a DTD could make Xerces fetch
 // external files or expand entities without bound.
 std::string_view root_start_tag(const std::string& name, const std::string& bytes) {
+  refuse_wide_text(name, bytes, "CityGML");
   std::size_t i = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   while (true) {
     while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;

@@ -1761,14 +1761,20 @@ TriangleSoup read_cityjson_unguarded(const std::filesystem::path& file, const Ci
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open");
   if (ext == ".jsonl") {
+    bool first = true;
     reader.read_sequence([&](std::string& line) {
-      if (std::getline(in, line)) return true;
+      if (std::getline(in, line)) {
+        if (first) refuse_wide_text(file.string(), line, "CityJSONSeq");
+        first = false;
+        return true;
+      }
       if (in.bad()) throw InputError(file.string() + ": read error");
       return false;
     });
   } else {
     const simdjson::padded_string buffer = read_padded(file, in);
     const std::string_view text(buffer.data(), buffer.size());
+    refuse_wide_text(file.string(), text, "CityJSON");
     std::optional<Chunk> chunk;
     try {
       chunk = scan_chunk(text, Where{file.string(), 0});

@@ -112,6 +112,7 @@ CsvTable read_csv_table(const std::filesystem::path& file, const std::string& wh
   if (!in) throw InputError("cannot open " + what + " '" + name + "'");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError("cannot read " + what + " '" + name + "'");
+  refuse_wide_text(name, text, "CSV");
 
   std::vector<Record> records = parse_records(name, text);
   if (records.empty()) throw InputError(name + ": no header row (the file is empty)");

@@ -461,6 +461,7 @@ WeatherSeries read_epw(const std::filesystem::path& file) {
   if (!in) throw InputError("cannot open weather file '" + file.string() + "'");
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw InputError("cannot read weather file '" + file.string() + "'");
+  refuse_wide_text(file.string(), bytes, "EPW");
   return EpwParser(file, bytes).parse();
 }
 

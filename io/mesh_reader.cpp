@@ -336,6 +336,7 @@ TriangleSoup read_mesh(const std::filesystem::path& file, MeshReadReport* report
   }
   const std::string bytes = read_whole_file(file);
 
+  if (extension == ".obj" || extension == ".off") refuse_wide_text(name, bytes, extension == ".obj" ? "OBJ" : "OFF");
   PolygonSoup soup;
   if (extension == ".obj")
     soup = mesh_io::parse_obj(name, bytes);

@@ -288,11 +288,13 @@ class Tmy3Parser {
 
 WeatherSeries read_tmy3_csv(const std::filesystem::path& file) {
   const std::string text = slurp(file);
+  refuse_wide_text(file.string(), text, "TMY3");
   return Tmy3Parser(file, text).parse();
 }
 
 WeatherSeries read_weather_file(const std::filesystem::path& file) {
   const std::string text = slurp(file);
+  refuse_wide_text(file.string(), text, "a weather file");
   const std::size_t first_end = text.find_first_of("\r\n");
   const std::string_view first = std::string_view(text).substr(0, first_end);
   if (trim(first).rfind("LOCATION", 0) == 0) return read_epw(file);

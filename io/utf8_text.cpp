@@ -2,6 +2,9 @@
 #include "io/utf8_text.h"
 
 #include <cstdio>
+#include <filesystem>
+
+#include "geometry/core/input_error.h"
 
 namespace skyband {
 namespace {
@@ -100,6 +103,29 @@ bool is_printable_text(std::string_view text) {
     i += n;
   }
   return true;
+}
+
+std::string_view wide_text_encoding(std::string_view b) {
+  const auto at = [&](std::size_t i) { return i < b.size() ? static_cast<unsigned char>(b[i]) : 0x100u; };
+  if ((at(0) == 0xFF && at(1) == 0xFE && at(2) == 0 && at(3) == 0) ||
+      (at(0) == 0 && at(1) == 0 && at(2) == 0xFE && at(3) == 0xFF))
+    return "UTF-32";
+  if ((at(0) == 0xFF && at(1) == 0xFE) || (at(0) == 0xFE && at(1) == 0xFF)) return "UTF-16";
+  const auto ascii = [](unsigned c) { return c >= 0x09 && c < 0x80; };
+  if (b.size() >= 4 &&
+      ((ascii(at(0)) && at(1) == 0 && at(2) == 0 && at(3) == 0) || (at(0) == 0 && at(1) == 0 && at(2) == 0 && ascii(at(3)))))
+    return "UTF-32";
+  if (b.size() >= 2 && ((ascii(at(0)) && at(1) == 0) || (at(0) == 0 && ascii(at(1))))) return "UTF-16";
+  return "";
+}
+
+void refuse_wide_text(const std::string& file, std::string_view bytes, std::string_view format) {
+  const std::string_view encoding = wide_text_encoding(bytes);
+  if (encoding.empty()) return;
+  const std::filesystem::path p(file);
+  throw InputError(file + ": " + std::string(encoding) + " text; " + std::string(format) +
+                   " is read as UTF-8: convert it first, e.g. iconv -f " + std::string(encoding) + " -t UTF-8 " +
+                   p.filename().string() + " > " + p.stem().string() + "-utf8" + p.extension().string());
 }
 
 }  // namespace skyband

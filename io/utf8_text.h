@@ -30,4 +30,13 @@ std::string printable_text(std::string_view text);
 // True if printable_text(text) == text: valid UTF-8 without control characters.
 bool is_printable_text(std::string_view text);
 
+// "UTF-16" or "UTF-32" when `bytes` begin as text in one of those encodings (a byte-order mark, or
+// an ASCII first character beside zero bytes: what Windows tools write as "Unicode"), else "".
+std::string_view wide_text_encoding(std::string_view bytes);
+
+// The text readers' first check: throws InputError "<file>: UTF-16 text; <format> is read as
+// UTF-8: convert it first, e.g. iconv -f UTF-16 -t UTF-8 ..." for such bytes, rather than
+// reporting their zero bytes as a format error further on.
+void refuse_wide_text(const std::string& file, std::string_view bytes, std::string_view format);
+
 }  // namespace skyband

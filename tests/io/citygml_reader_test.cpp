@@ -434,6 +434,18 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   };
   BOOST_TEST(error_of("empty.gml", "").find("not XML") != std::string::npos);
   BOOST_TEST(error_of("binary.gml", std::string("\x01\x02\xff\x00garbage", 11)).find("not XML") != std::string::npos);
+  // UTF-16 (with or without a byte-order mark, either byte order): named as such, not "not XML".
+  const auto utf16 = [&](bool big_endian, bool bom) {
+    std::string out = bom ? (big_endian ? std::string("\xFE\xFF") : std::string("\xFF\xFE")) : std::string();
+    for (const char c : good) out += big_endian ? std::string{'\0', c} : std::string{c, '\0'};
+    return out;
+  };
+  for (const bool big : {false, true})
+    for (const bool bom : {false, true}) {
+      const std::string e = error_of(std::string("utf16") + (big ? "be" : "le") + (bom ? "bom" : "") + ".gml", utf16(big, bom));
+      BOOST_TEST(e.find("UTF-16") != std::string::npos, e);
+      BOOST_TEST(e.find("iconv") != std::string::npos, e);
+    }
   // Cut in the middle: Xerces' message with line:column.
   const std::string cut = error_of("cut.gml", good.substr(0, good.size() / 2));
   BOOST_TEST(cut.find("malformed XML") != std::string::npos, cut);
