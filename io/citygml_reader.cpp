@@ -1004,8 +1004,13 @@ TriangleSoup read_unguarded(const std::filesystem::path& file, const CityGmlRead
   std::string bytes = read_bytes(file);
   FileScan scan = scan_bytes(name, bytes);
 
-  if (const std::string xml = first_xml_error(bytes); !xml.empty())
-    throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML)");
+  if (const std::string xml = first_xml_error(bytes); !xml.empty()) {
+    // A file cut short (an interrupted download or copy) ends before the root's end tag.
+    const std::size_t last = bytes.find_last_not_of(" \t\r\n");
+    const bool cut = last == std::string::npos || last < 10 || bytes.compare(last - 9, 10, "CityModel>") != 0;
+    throw InputError(name + ":" + printable_text(xml).substr(0, 300) + " (malformed XML" +
+                     (cut ? "; the file ends before </core:CityModel>: cut short?)" : ")"));
+  }
   const AdeElements ade = blank_ade_elements(bytes);
   check_coordinate_lists(name, bytes);
   scan.srs_names = srs_names(bytes);
