@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry/core/input_error.h"
+#include "input_error_of.h"
 #include "io/citygml_reader.h"
 #include "io/mesh_reader.h"
 #include "lighting/climate/climate_irradiation.h"
@@ -55,17 +56,6 @@ fs::path write_file(const std::string& name, const std::string& text) {
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// The message of the InputError that f throws ("" if none is thrown).
-template <class F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // ---- Hand-made CityGML ---------------------------------------------------------------------
@@ -319,9 +309,9 @@ BOOST_AUTO_TEST_CASE(lod_choice_exact_lod_and_building_parts) {
   BOOST_TEST(lod1.triangle_count() == 12u);  // the LoD 1 solid: 6 quads, no hole
   BOOST_TEST((area_by_material(lod1) == std::map<std::string, double>{{"Building", 700.0}}));
   BOOST_TEST(read_citygml(file, at_lod("2.0")).triangle_count() == 18u);  // "2.0" = "2"
-  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("3")); }).find("no triangles") != std::string::npos);
-  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("2.2")); }).find("no triangles") != std::string::npos);
-  BOOST_TEST(input_error([&] { read_citygml(file, at_lod("two")); }).find("is not a LoD") != std::string::npos);
+  BOOST_TEST(test::error_of([&] { read_citygml(file, at_lod("3")); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(test::error_of([&] { read_citygml(file, at_lod("2.2")); }).find("no triangles") != std::string::npos);
+  BOOST_TEST(test::error_of([&] { read_citygml(file, at_lod("two")); }).find("is not a LoD") != std::string::npos);
 
   // A Building with an LoD 1 solid and a BuildingPart at LoD 2: by default the part alone (the
   // parent's LoD 1 would duplicate it); at LoD 1 the parent alone (the part has no LoD 1).
@@ -405,7 +395,7 @@ BOOST_AUTO_TEST_CASE(implicit_geometries_are_placed) {
       "trees_geo.gml",
       document("2.0", "EPSG:6697",
                member(tree("t", "<core:relativeGMLGeometry>" + tpl + "</core:relativeGMLGeometry>", Vec3(35.68, 139.69, 40)))));
-  const std::string e = input_error([&] { read_citygml(geo); });
+  const std::string e = test::error_of([&] { read_citygml(geo); });
   BOOST_TEST(e.find("no triangles (1 city objects, 1 skipped)") != std::string::npos, e);
 }
 
@@ -427,7 +417,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
   const std::string good = document("2.0", kProjected, member(box_building("box1", kBox)));
   auto error_of = [](const std::string& name, const std::string& text) {
     const fs::path p = write_file(name, text);
-    const std::string e = input_error([&] { read_citygml(p); });
+    const std::string e = test::error_of([&] { read_citygml(p); });
     BOOST_TEST(e.find(p.string()) == 0u, name << ": " << e);
     BOOST_TEST(e.find('\n') == std::string::npos);
     return e;
@@ -498,7 +488,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_one_input_error_naming_the_file) {
                member("<bldg:Building gml:id=\"b\"><bldg:lod1MultiSurface>" + multi_surface({polygon("p", long_ring)}) +
                       "</bldg:lod1MultiSurface></bldg:Building>"));
   BOOST_TEST(error_of("long.gml", long_text).find("cuts texts over 1 MiB") != std::string::npos);
-  BOOST_TEST(input_error([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
+  BOOST_TEST(test::error_of([] { read_citygml(temp_path() / "missing.gml"); }).find("does not exist") != std::string::npos);
 }
 
 // gml:pos, the coordinates libcitygml reads with no check at all, are checked as posList's are
@@ -516,7 +506,7 @@ BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
     std::string text = good;
     text.replace(text.find(from), from.size(), to);
     const fs::path p = write_file(name, text);
-    const std::string e = input_error([&] { read_citygml(p); });
+    const std::string e = test::error_of([&] { read_citygml(p); });
     BOOST_TEST(e.find(p.string() + ":5: ") == 0u, name << ": " << e);
     BOOST_TEST(e.find('\n') == std::string::npos);
     return e;
@@ -566,7 +556,7 @@ BOOST_AUTO_TEST_CASE(pos_and_matrix_values_are_checked_and_named) {
     std::string text = trees;
     text.replace(text.find("1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"), 31, matrix);
     const fs::path p = write_file("tree_bad.gml", text);
-    const std::string e = input_error([&] { read_citygml(p); });
+    const std::string e = test::error_of([&] { read_citygml(p); });
     BOOST_TEST(e.find(p.string() + ":5: ") == 0u, e);
     BOOST_TEST(e.find(says) != std::string::npos, e);
   }
@@ -629,16 +619,16 @@ BOOST_AUTO_TEST_CASE(ade_elements_are_not_read_and_named) {
   bad.replace(bad.rfind("<gml:pos>" + number(kBox.lo.x())), 9 + number(kBox.lo.x()).size(), "<gml:pos>NaN");
   const fs::path p = write_file("ade_bad.gml", bad);
   const std::size_t line = 1 + std::count(bad.begin(), bad.begin() + bad.rfind("<gml:pos>NaN"), '\n');
-  const std::string e = input_error([&] { read_citygml(p); });
+  const std::string e = test::error_of([&] { read_citygml(p); });
   BOOST_TEST(e.find(p.string() + ":" + std::to_string(line) + ": non-finite coordinate") == 0u, e);
   // A CityGML element libcitygml does not know, alone in its property: one line naming the place.
   const fs::path unknown = write_file("unknown.gml", document("2.0", kProjected, member("<bldg:Shed gml:id=\"s\"/>")));
-  const std::string u = input_error([&] { read_citygml(unknown); });
+  const std::string u = test::error_of([&] { read_citygml(unknown); });
   BOOST_TEST(u.find(unknown.string() + ":4:") == 0u, u);
   BOOST_TEST(u.find("cannot read the content of <core:cityobjectmember>") != std::string::npos, u);
   // A file of ADE features alone: one line naming the file and the ADE.
   const fs::path only = write_file("ade_only.gml", document("2.0", kProjected, member(other), ns));
-  const std::string o = input_error([&] { read_citygml(only); });
+  const std::string o = test::error_of([&] { read_citygml(only); });
   BOOST_TEST(o.find(only.string() + ": no triangles") == 0u, o);
   BOOST_TEST(o.find("Application Domain Extensions are not supported") != std::string::npos, o);
   BOOST_TEST(o.find("http://www.example.org/ade/test/1.0 (1 x <test:Thing>)") != std::string::npos, o);
@@ -707,7 +697,7 @@ BOOST_AUTO_TEST_CASE(geographic_models_share_the_utm_zone_given) {
 
 BOOST_AUTO_TEST_CASE(citygml_3_is_refused_in_one_line, *test::needs_shared_data()) {
   for (const char* name : {kTokyo3, kLyon3}) {
-    const std::string e = input_error([&] { read_mesh(shared(name)); });
+    const std::string e = test::error_of([&] { read_mesh(shared(name)); });
     BOOST_TEST(e.find(shared(name).string()) == 0u, e);
     BOOST_TEST(e.find("CityGML 3.0 is not supported") != std::string::npos, e);
     BOOST_TEST(e.find("citygml-tools") != std::string::npos, e);
