@@ -1,6 +1,7 @@
 // Strict UTF-8 decoding and printable escapes (utf8_text.h).
 #include "io/utf8_text.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -106,16 +107,28 @@ bool is_printable_text(std::string_view text) {
 }
 
 std::string_view wide_text_encoding(std::string_view b) {
+  if (b.substr(0, 3) == "\xEF\xBB\xBF") b.remove_prefix(3);  // what follows a UTF-8 byte-order mark
   const auto at = [&](std::size_t i) { return i < b.size() ? static_cast<unsigned char>(b[i]) : 0x100u; };
   if ((at(0) == 0xFF && at(1) == 0xFE && at(2) == 0 && at(3) == 0) ||
       (at(0) == 0 && at(1) == 0 && at(2) == 0xFE && at(3) == 0xFF))
     return "UTF-32";
   if ((at(0) == 0xFF && at(1) == 0xFE) || (at(0) == 0xFE && at(1) == 0xFF)) return "UTF-16";
-  const auto ascii = [](unsigned c) { return c >= 0x09 && c < 0x80; };
-  if (b.size() >= 4 &&
-      ((ascii(at(0)) && at(1) == 0 && at(2) == 0 && at(3) == 0) || (at(0) == 0 && at(1) == 0 && at(2) == 0 && ascii(at(3)))))
-    return "UTF-32";
-  if (b.size() >= 2 && ((ascii(at(0)) && at(1) == 0) || (at(0) == 0 && ascii(at(1))))) return "UTF-16";
+  // Without a byte-order mark: the first code units (up to 4 of UTF-16, 2 of UTF-32, as many as
+  // the text holds) are printable ASCII or white space, each beside the zero bytes of its unit.
+  const auto ascii = [](unsigned c) { return c == 0x09 || c == 0x0A || c == 0x0D || (c >= 0x20 && c < 0x7F); };
+  const auto units = [&](std::size_t width, bool big_endian) {
+    const std::size_t n = std::min<std::size_t>(b.size() / width, width == 2 ? 4 : 2);
+    if (n == 0) return false;
+    for (std::size_t u = 0; u < n; ++u)
+      for (std::size_t k = 0; k < width; ++k) {
+        const bool low = big_endian ? k == width - 1 : k == 0;
+        const unsigned c = at(u * width + k);
+        if (low ? !ascii(c) : c != 0) return false;
+      }
+    return true;
+  };
+  if (units(4, false) || units(4, true)) return "UTF-32";
+  if (units(2, false) || units(2, true)) return "UTF-16";
   return "";
 }
 
