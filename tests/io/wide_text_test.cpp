@@ -68,7 +68,10 @@ BOOST_AUTO_TEST_CASE(encodings_are_told_from_the_first_bytes) {
     BOOST_TEST(wide_text_encoding(plain).empty(), plain);
   // Zero bytes inside UTF-8 text are not UTF-16 (a quoted CSV cell of zero bytes, as a points file
   // written back quotes it: a fuzzer's round trip): the first units must all look like text.
-  BOOST_TEST(wide_text_encoding(std::string("\"\0\0\xfc\xff\xff\xff\xff\xffD", 10)).empty());
+  BOOST_TEST(wide_text_encoding(std::string("\"\0\0\xfc\xff\xff\xff\xff\xff"
+                                            "D",
+                                            10))
+                 .empty());
   BOOST_TEST(wide_text_encoding(std::string("\"\0x\0", 4)) == "UTF-16");  // all a short text has
   // After a UTF-8 byte-order mark (as a reader strips it, so that a round trip agrees).
   BOOST_TEST(wide_text_encoding("\xEF\xBB\xBF" + wide("x,y", 2, false, true)) == "UTF-16");
