@@ -42,6 +42,21 @@ void check_tolerance(const Scene& scene, const std::vector<QueryPoint>& pts, con
   }
 }
 
+// A regression point (normal up) with its independent reference values, matched by the exact union
+// within `within`; then the band method's tolerance there and at `extra` real-mesh points of the
+// model (seed `seed`).
+void check_regression_point(const TriangleSoup& soup, const Vec3& point, double svf, double exposure, double within,
+                            std::size_t extra, std::uint64_t seed, const char* what) {
+  const Scene scene(soup);
+  std::vector<QueryPoint> pts = {{point, Vec3(0, 0, 1)}};
+  for (const QueryPoint& q : gen::real_mesh_points(scene, extra, seed)) pts.push_back(q);
+  const SkyFactorsRun exact =
+      compute_sky_factors(scene, std::span(pts).first(1), VisibilityOptions{}, SkyFactorsMethod::exact, 1);
+  BOOST_TEST(std::abs(exact.factors[0].svf - svf) < within, what);
+  BOOST_TEST(std::abs(exact.factors[0].sky_exposure - exposure) < within, what);
+  check_tolerance(scene, pts, what);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(low_skyline_beyond_the_edge_of_a_city_and_its_facades) {
@@ -55,16 +70,8 @@ BOOST_AUTO_TEST_CASE(low_skyline_beyond_the_edge_of_a_city_and_its_facades) {
 }
 
 BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile, *skyband::test::needs_shared_data()) {
-  const TriangleSoup soup =
-      read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj");
-  const Scene scene(soup);
-  std::vector<QueryPoint> pts = {{Vec3(84818.397554, 447648.962315, -0.42), Vec3(0, 0, 1)}};
-  for (const QueryPoint& q : gen::real_mesh_points(scene, 16, 7)) pts.push_back(q);
-  const SkyFactorsRun exact =
-      compute_sky_factors(scene, std::span(pts).first(1), VisibilityOptions{}, SkyFactorsMethod::exact, 1);
-  BOOST_TEST(std::abs(exact.factors[0].svf - 0.99790) < 1e-4);
-  BOOST_TEST(std::abs(exact.factors[0].sky_exposure - 0.97433) < 1e-4);
-  check_tolerance(scene, pts, "Delft tile");
+  check_regression_point(read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj"),
+                         Vec3(84818.397554, 447648.962315, -0.42), 0.99790, 0.97433, 1e-4, 16, 7, "Delft tile");
 }
 
 // A 3D BAG street point 5 cm above the lowest floor around, under buildings whose floors stand
@@ -75,14 +82,7 @@ BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile, *skyband::test::needs_shared
 // cast at the midpoints of a 3000 × 6000 grid in (cos θ, azimuth), resp. (sin² θ, azimuth) for the
 // SVF, against every triangle: exposure 0.981035, svf 0.995418.
 BOOST_AUTO_TEST_CASE(buildings_floating_just_above_the_point, *skyband::test::needs_shared_data()) {
-  const TriangleSoup soup =
-      read_cityjson(std::filesystem::path(SKYBAND_SHARED_DATA) / "cityjson" / "3dbag_v1_sample_denhaag.city.json");
-  const Scene scene(soup);
-  std::vector<QueryPoint> pts = {{Vec3(76587.223997, 451787.858388, 0.133), Vec3(0, 0, 1)}};
-  for (const QueryPoint& q : gen::real_mesh_points(scene, 24, 31)) pts.push_back(q);
-  const SkyFactorsRun exact =
-      compute_sky_factors(scene, std::span(pts).first(1), VisibilityOptions{}, SkyFactorsMethod::exact, 1);
-  BOOST_TEST(std::abs(exact.factors[0].svf - 0.995418) < 2e-5);
-  BOOST_TEST(std::abs(exact.factors[0].sky_exposure - 0.981035) < 2e-5);
-  check_tolerance(scene, pts, "3D BAG sample");
+  check_regression_point(
+      read_cityjson(std::filesystem::path(SKYBAND_SHARED_DATA) / "cityjson" / "3dbag_v1_sample_denhaag.city.json"),
+      Vec3(76587.223997, 451787.858388, 0.133), 0.995418, 0.981035, 2e-5, 24, 31, "3D BAG sample");
 }

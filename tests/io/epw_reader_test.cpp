@@ -340,19 +340,25 @@ BOOST_AUTO_TEST_CASE(missing_codes_of_optional_fields_become_missing) {
   BOOST_TEST(zero_warned);
 }
 
+// The file's text with every record cut to its first `fields` fields, and `suffix` appended to the
+// first `suffixed` records.
+std::string edited_text(const EpwText& e, std::size_t fields, std::size_t suffixed = 0, const std::string& suffix = "") {
+  std::string text;
+  for (const auto& h : e.header) text += h + "\n";
+  for (std::size_t i = 0; i < e.records.size(); ++i) {
+    for (std::size_t k = 0; k < fields; ++k) text += (k ? "," : "") + e.records[i][k];
+    text += (i < suffixed ? suffix : "") + "\n";
+  }
+  return text;
+}
+
 BOOST_AUTO_TEST_CASE(older_records_of_32_fields_are_read_without_albedo) {
   // EPW files of older converters end each record after field 32 (present weather codes); the
   // EnergyPlus data dictionary's fields 33-35 (albedo, precipitation) are then absent.
   TempDir d;
   EpwText e = two_days();
   e.field(3, 14) = "120", e.field(3, 15) = "300", e.field(3, 16) = "80";
-  std::string text;
-  for (const auto& h : e.header) text += h + "\n";
-  for (const auto& r : e.records) {
-    for (std::size_t k = 0; k < 32; ++k) text += (k ? "," : "") + r[k];
-    text += "\n";
-  }
-  const fs::path p = write(d, "old32.epw", text);
+  const fs::path p = write(d, "old32.epw", edited_text(e, 32));
   const WeatherSeries s = read_epw(p);
   BOOST_TEST(s.records.size() == e.records.size());
   BOOST_TEST(s.records[3].ghi_Wh_m2 == 120.0);
@@ -370,13 +376,7 @@ BOOST_AUTO_TEST_CASE(records_ending_in_a_comma_are_read_with_a_warning) {
   TempDir d;
   EpwText e = two_days();
   e.field(3, 14) = "120", e.field(3, 15) = "300", e.field(3, 16) = "80";
-  std::string text;
-  for (const auto& h : e.header) text += h + "\n";
-  for (std::size_t i = 0; i < e.records.size(); ++i) {
-    for (std::size_t k = 0; k < e.records[i].size(); ++k) text += (k ? "," : "") + e.records[i][k];
-    text += i < 5 ? ",\n" : "\n";
-  }
-  const fs::path p = write(d, "comma.epw", text);
+  const fs::path p = write(d, "comma.epw", edited_text(e, 35, 5, ","));
   const WeatherSeries s = read_epw(p);
   const WeatherSeries plain = read_epw(write(d, "plain.epw", e.text()));
   BOOST_TEST(s.records.size() == plain.records.size());
