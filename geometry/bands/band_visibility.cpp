@@ -45,13 +45,15 @@ struct BandState {
   int e0, c, e1;     // plane indices of the edges and the centre (e0/e1 = −1 without refinement)
   double error = 0;  // estimated error of the band's midpoint value, SVF units
   int depth = 0;
-  bool from_breakpoints = false;      // made by a breakpoint split: the next split bisects
-  double cached_error = -1;           // band_error() once computed (its lines never change), else −1
-  double cached_exposure_error = -1;  // band_exposure_error(), with cached_error
-  double unseen_error = 0;            // bound of what geometry between its lines can hide, SVF units
-  double unseen_exposure_error = 0;   // the same, exposure units
-  double unseen_cut = -1;             // δ through the largest of that geometry (−1: none)
-  double unseen_largest = 0;          // its bound
+  bool from_breakpoints = false;       // made by a breakpoint split: the next split bisects
+  double cached_error = -1;            // band_error() once computed (its lines never change), else −1
+  double cached_exposure_error = -1;   // band_exposure_error(), with cached_error
+  double unseen_error = 0;             // bound of what geometry between its lines can hide, SVF units
+  double unseen_exposure_error = 0;    // the same, exposure units
+  double unseen_cut = -1;              // δ through the largest of that geometry (−1: none)
+  double unseen_largest = 0;           // its bound
+  int sibling = -1;                    // the other half of a bisected band (−1: none)
+  double parent_q = 0, parent_qe = 0;  // the bisected band's rule values (SVF, exposure), before π
 };
 
 }  // namespace
@@ -597,6 +599,16 @@ struct BandVisibility::Impl {
   // SVF: |rule − midpoint|/π, the midpoint value's error where f is smooth, and a generous bound
   // on the three-node value the cache carries (a step inside the band is located exactly
   // instead, split_at_breakpoints); against a plane at least the full variation of its lines.
+  // The band's rule values: ∫ f cos(δ − β) dδ (three-node rule) and ∫ g dδ (Simpson).
+  double band_q(const BandState& b) const {
+    const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
+    return r.w0 * planes[b.e0].line_integral + r.wm * planes[b.c].line_integral + r.w1 * planes[b.e1].line_integral;
+  }
+  double band_qe(const BandState& b) const {
+    return (b.d1 - b.d0) * (planes[b.e0].exposure_integral + 4 * planes[b.c].exposure_integral + planes[b.e1].exposure_integral) /
+           6;
+  }
+
   double band_error(const BandState& b) const {
     if (b.e0 < 0) return 0;
     const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
@@ -794,6 +806,10 @@ struct BandVisibility::Impl {
     // exact union: with the full tolerance as the criterion the largest error is 1.15× the
     // estimated total).
     constexpr double kSafety = 0.5;
+    // Each half of a bisected band takes at least this share of the error its parent's rule made,
+    // measured by the halves (adaptive quadrature's check of the whole against its halves, as in
+    // adaptive Simpson: Kuncir 1962, Lyness 1969).
+    constexpr double kHalfShare = 0.5;
     for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
       // Both estimated totals, the SVF's and the exposure's, must be within the tolerance; a
       // band's error for the choice of splits is the larger share of either.
@@ -803,6 +819,15 @@ struct BandVisibility::Impl {
         if (b.cached_error < 0) {
           b.cached_error = band_error(b);
           b.cached_exposure_error = band_exposure_error(b);
+          if (b.sibling >= 0) {
+            // The halves against the whole: the error the parent's rule actually made, measured.
+            // Where f steps more than once inside a band, its three lines can agree with a smooth
+            // f (estimate ~0) while the halves disagree with it; each half takes a share.
+            const BandState& s = bands[b.sibling];
+            b.cached_error = std::max(b.cached_error, kHalfShare * std::abs(band_q(b) + band_q(s) - b.parent_q) / kPi);
+            b.cached_exposure_error =
+                std::max(b.cached_exposure_error, kHalfShare * std::abs(band_qe(b) + band_qe(s) - b.parent_qe) / (2 * kPi));
+          }
         }
         total_svf += b.cached_error + b.unseen_error;
         total_exposure += b.cached_exposure_error + b.unseen_exposure_error;
@@ -848,6 +873,10 @@ struct BandVisibility::Impl {
         BandState right{dm, b.d1, b.c, -1, b.e1, 0, b.depth + 1};
         left.c = add_plane_at(0.5 * (left.d0 + left.d1));
         right.c = add_plane_at(0.5 * (right.d0 + right.d1));
+        left.parent_q = right.parent_q = band_q(b);
+        left.parent_qe = right.parent_qe = band_qe(b);
+        left.sibling = static_cast<int>(bands.size() + added.size());
+        right.sibling = i;
         b = left;
         added.push_back(right);
       }

@@ -74,6 +74,17 @@ BOOST_AUTO_TEST_CASE(terrain_points_of_a_real_tile, *skyband::test::needs_shared
                          Vec3(84818.397554, 447648.962315, -0.42), 0.99790, 0.97433, 1e-4, 16, 7, "Delft tile");
 }
 
+// A Delft street point whose g(δ) (the visible part of a line, sin α-weighted) rises from 0 to 1.5
+// in two steps inside one band, whose three lines happen to lie on a straight line: its own
+// estimate is ~0, the exposure error 2.4·10⁻³ at tolerance 10⁻³ until the halves of each bisected
+// band are checked against the whole. Reference: the exact union.
+BOOST_AUTO_TEST_CASE(steps_that_a_band_s_three_lines_do_not_show, *skyband::test::needs_shared_data()) {
+  const TriangleSoup soup =
+      read_mesh(std::filesystem::path(SKYBAND_SHARED_DATA) / "buildings" / "delft_3dfier_testarea_lod1.obj");
+  const Scene scene(soup);
+  check_tolerance(scene, {{Vec3(84937.3447, 447616.3482, 0.3416), Vec3(0, 0, 1)}}, "Delft street");
+}
+
 // A 3D BAG street point 5 cm above the lowest floor around, under buildings whose floors stand
 // 0.2–0.3 m above it: seen from the point they float just above its horizontal, so the horizon's
 // sample line passes under them and the next initial line over them — no initial line meets them,
