@@ -116,6 +116,14 @@ CsvTable read_csv_table(const std::filesystem::path& file, const std::string& wh
 
   std::vector<Record> records = parse_records(name, text);
   if (records.empty()) throw InputError(name + ": no header row (the file is empty)");
+  // Spreadsheets in many locales save "CSV" with ';' (and decimal commas), or tabs: one cell here.
+  if (records[0].cells.size() == 1)
+    for (const char separator : {';', '\t'})
+      if (records[0].cells[0].find(separator) != std::string::npos)
+        throw InputError(name + ":" + std::to_string(records[0].line) + ": the header '" + printable_text(records[0].cells[0]) +
+                         "' is one column: the file separates its values with " + (separator == ';' ? "';'" : "tabs") +
+                         "; skyband reads comma-separated values (RFC 4180): save it with ',' between values and '.' as the "
+                         "decimal point");
   CsvTable t;
   t.file = file;
   t.header = records[0].cells;

@@ -98,6 +98,9 @@ BOOST_AUTO_TEST_CASE(errors_name_file_line_column_and_value) {
       {"x,y,z\n1,2,\"3\n", {"missing.csv:2:", "never closed"}},
       {"x,y,z\n1,2,1e999\n", {"missing.csv:2:", "'1e999'", "out of the range"}},
       {"", {"missing.csv", "empty"}},
+      // Spreadsheet exports with another separator: named, not "column 'x' is missing".
+      {"x;y;z\n1,5;2;3\n", {"missing.csv:1:", "'x;y;z' is one column", "';'", "','"}},
+      {"x\ty\tz\n1\t2\t3\n", {"missing.csv:1:", "is one column", "tabs"}},
   };
   for (const auto& [text, parts] : cases) {
     BOOST_TEST_CONTEXT(text) {
