@@ -808,7 +808,7 @@ struct BandVisibility::Impl {
     constexpr double kSafety = 0.5;
     // Each half of a bisected band takes at least this share of the error its parent's rule made,
     // measured by the halves (adaptive quadrature's check of the whole against its halves, as in
-    // adaptive Simpson: Kuncir 1962, Lyness 1969).
+    // adaptive Simpson [Lyness69]).
     constexpr double kHalfShare = 0.5;
     for (int pass = 0; pass < opt.max_refine_depth; ++pass) {
       // Both estimated totals, the SVF's and the exposure's, must be within the tolerance; a
