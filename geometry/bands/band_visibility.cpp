@@ -612,8 +612,7 @@ struct BandVisibility::Impl {
   double band_error(const BandState& b) const {
     if (b.e0 < 0) return 0;
     const BandRule r = band_rule(b.d0, b.d1, frame.beta_rad);
-    const double q = r.w0 * planes[b.e0].line_integral + r.wm * planes[b.c].line_integral + r.w1 * planes[b.e1].line_integral;
-    double e = std::abs(q - r.m0 * planes[b.c].line_integral) / kPi;
+    double e = std::abs(band_q(b) - r.m0 * planes[b.c].line_integral) / kPi;
     if (against_a_plane(b)) {
       const double f0 = planes[b.e0].line_integral, fc = planes[b.c].line_integral, f1 = planes[b.e1].line_integral;
       e = std::max(e, r.m0 * (std::max({f0, fc, f1}) - std::min({f0, fc, f1})) / kPi);
@@ -627,7 +626,7 @@ struct BandVisibility::Impl {
     if (b.e0 < 0) return 0;
     const double w = b.d1 - b.d0;
     const double g0 = planes[b.e0].exposure_integral, gc = planes[b.c].exposure_integral, g1 = planes[b.e1].exposure_integral;
-    double e = std::abs(w * (g0 + 4 * gc + g1) / 6 - w * gc) / (2 * kPi);
+    double e = std::abs(band_qe(b) - w * gc) / (2 * kPi);
     if (against_a_plane(b)) e = std::max(e, w * (std::max({g0, gc, g1}) - std::min({g0, gc, g1})) / (2 * kPi));
     return e;
   }
@@ -856,34 +855,34 @@ struct BandVisibility::Impl {
           // What no line meets dominates: cut the band through the largest of it (a line there
           // meets it, or its ancestors' boxes give way to tighter ones).
           remaining -= std::max(b.unseen_error, b.unseen_exposure_error);
-          const double dc = b.unseen_cut;
-          const int cut = add_plane_at(dc);
-          BandState left{b.d0, dc, b.e0, -1, cut, 0, b.depth + 1};
-          BandState right{dc, b.d1, cut, -1, b.e1, 0, b.depth + 1};
-          left.c = add_plane_at(0.5 * (left.d0 + left.d1));
-          right.c = add_plane_at(0.5 * (right.d0 + right.d1));
-          b = left;
-          added.push_back(right);
+          split_in_two(bands, i, b.unseen_cut, add_plane_at(b.unseen_cut), added);
           continue;
         }
         remaining -= 0.5 * b.error;
         if (split_at_breakpoints(b, added)) continue;
-        const double dm = 0.5 * (b.d0 + b.d1);
-        BandState left{b.d0, dm, b.e0, -1, b.c, 0, b.depth + 1};
-        BandState right{dm, b.d1, b.c, -1, b.e1, 0, b.depth + 1};
-        left.c = add_plane_at(0.5 * (left.d0 + left.d1));
-        right.c = add_plane_at(0.5 * (right.d0 + right.d1));
-        left.parent_q = right.parent_q = band_q(b);
-        left.parent_qe = right.parent_qe = band_qe(b);
-        left.sibling = static_cast<int>(bands.size() + added.size());
-        right.sibling = i;
-        b = left;
-        added.push_back(right);
+        split_in_two(bands, i, 0.5 * (b.d0 + b.d1), b.c, added);  // its centre line becomes an edge
       }
       if (plane_count == first_new) return;
       bands.insert(bands.end(), added.begin(), added.end());
       run_pass(first_new);
     }
+  }
+
+  // Splits band i at δ = d, whose line is plane `cut`: bands[i] becomes the lower half, the upper
+  // one is appended to `added` (after `bands` in the next pass). Each half gets a centre line and
+  // remembers the whole's rule values for the halves check.
+  void split_in_two(std::vector<BandState>& bands, int i, double d, int cut, std::vector<BandState>& added) {
+    BandState& b = bands[i];
+    BandState left{b.d0, d, b.e0, -1, cut, 0, b.depth + 1};
+    BandState right{d, b.d1, cut, -1, b.e1, 0, b.depth + 1};
+    left.c = add_plane_at(0.5 * (left.d0 + left.d1));
+    right.c = add_plane_at(0.5 * (right.d0 + right.d1));
+    left.parent_q = right.parent_q = band_q(b);
+    left.parent_qe = right.parent_qe = band_qe(b);
+    left.sibling = static_cast<int>(bands.size() + added.size());
+    right.sibling = i;
+    b = left;
+    added.push_back(right);
   }
 
   // Splits band b at the recorded breakpoints inside the half where its lines show a step (at
