@@ -31,8 +31,8 @@ std::string printable_text(std::string_view text);
 bool is_printable_text(std::string_view text);
 
 // "UTF-16" or "UTF-32" when `bytes` (after a UTF-8 byte-order mark, if any) begin as text in one of
-// those encodings (a byte-order mark, or an ASCII first character beside zero bytes: what Windows
-// tools write as "Unicode"), else "".
+// those encodings — a byte-order mark, or up to four code units (two of UTF-32) of printable ASCII
+// or white space each beside zero bytes: what Windows tools write as "Unicode" — else "".
 std::string_view wide_text_encoding(std::string_view bytes);
 
 // The text readers' first check: throws InputError "<file>: UTF-16 text; <format> is read as
