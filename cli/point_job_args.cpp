@@ -29,7 +29,7 @@ void PointJobArgs::add_to(CLI::App* cmd, const std::string& out_help) {
                   "facade, as Ladybug and Honeybee do; default 0); the output keeps the input's coordinates");
   o_method_ = cmd->add_option("--method", method_,
                               "auto (default): exact at every point, for any mesh — the exact horizon where the scene is\n"
-                              "closed buildings extruded from a flat floor at or below the point (fastest), the exact\n"
+                              "closed buildings extruded from floors at or below the point (fastest), the exact\n"
                               "union of the occluders' projections elsewhere; exact: the exact union everywhere; bands:\n"
                               "the paper's band method (--bands N or --tolerance T; either alone selects it)")
                   ->check(CLI::IsMember({"auto", "exact", "bands"}));

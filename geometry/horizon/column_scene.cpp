@@ -7,7 +7,6 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/core/disjoint_sets.h"
 #include "geometry/core/exact_sign.h"
 #include "geometry/mesh/grouped_bvh.h"
 #include "geometry/mesh/welding.h"
@@ -19,7 +18,6 @@ namespace {
 struct DirectedEdge {
   std::uint32_t lo, hi;  // welded ids, lo < hi
   bool forward;          // traversed lo → hi
-  std::uint32_t component;
   std::uint32_t triangle;
   std::uint8_t side;  // k: the side v_k → v_{k+1}
 };
@@ -82,80 +80,56 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   if (nt == 0) return out;
   const std::vector<std::uint32_t> wid = weld_positions(soup.vertices);
 
-  // Triangles sharing a welded vertex belong to one component.
-  DisjointSets comp(nt);
-  {
-    std::vector<std::uint32_t> first_triangle(soup.vertices.size(), UINT32_MAX);
-    for (std::uint32_t t = 0; t < nt; ++t)
-      for (std::uint32_t vi : soup.triangles[t]) {
-        std::uint32_t& f = first_triangle[wid[vi]];
-        if (f == UINT32_MAX)
-          f = t;
-        else
-          comp.unite(f, t);
-      }
-  }
-  std::vector<std::uint32_t> root(nt);
-  for (std::uint32_t t = 0; t < nt; ++t) root[t] = comp.find(t);
-
-  struct ComponentState {
-    bool closed_ok = true;
-    double z_min = 1e300;
-    Vec3 reference;
-    bool has_reference = false;
-  };
-  std::vector<ComponentState> state(nt);  // indexed by root triangle
+  // A triangle repeating a (welded) vertex has no area, and its two other sides traverse one
+  // segment both ways, so it adds nothing to any surface's boundary: it is left out (neither a
+  // face of a column solid nor a triangle of another component — it hides nothing).
+  std::vector<char> degenerate(nt, 0);
   std::vector<DirectedEdge> edges;
   edges.reserve(3 * nt);
   for (std::uint32_t t = 0; t < nt; ++t) {
-    ComponentState& s = state[root[t]];
     const auto& tri = soup.triangles[t];
     const std::array<std::uint32_t, 3> w{wid[tri[0]], wid[tri[1]], wid[tri[2]]};
-    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) s.closed_ok = false;
-    const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    if (!s.has_reference) {
-      s.reference = a;
-      s.has_reference = true;
+    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) {
+      degenerate[t] = 1;
+      continue;
     }
-    s.z_min = std::min({s.z_min, a.z(), b.z(), c.z()});
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t p = w[k], q = w[(k + 1) % 3];
-      if (p != q) edges.push_back({std::min(p, q), std::max(p, q), p < q, root[t], t, std::uint8_t(k)});
+      edges.push_back({std::min(p, q), std::max(p, q), p < q, t, std::uint8_t(k)});
     }
   }
-  // Closed and orientable: every undirected edge exactly twice — or once, when both its ends lie
-  // in the component's floor plane (a floor left open: buildings modelled as walls and a roof
-  // standing on the ground). The files' windings need not agree: each triangle gets a flip bit
-  // that makes the two triangles of every edge traverse it in opposite directions (a walk over the
-  // edges), and a component where no such bits exist is not a column solid.
+  // Every undirected edge in exactly two triangles links them (the files' windings need not
+  // agree: each triangle gets a flip bit that makes the two traverse it in opposite directions);
+  // an edge in one triangle is open (it lifts its solid's floor height to its ends: at the floor
+  // for a floor left open, buildings modelled as walls and a roof standing on the ground); a vertical
+  // edge in 4, 6, ... triangles links nothing (columns meeting along a vertical line only:
+  // height-field pixels touching diagonally, buildings touching at a corner) and must be
+  // balanced once every triangle is oriented; any other edge (three triangles, or four on a
+  // horizontal edge: a party wall modelled twice) makes the surfaces through it other components.
+  // Ranges [first, last) into `edges`.
   std::sort(edges.begin(), edges.end(),
             [](const DirectedEdge& x, const DirectedEdge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
   std::vector<std::uint32_t> adjacency_start(nt + 1, 0);
   std::vector<std::pair<std::uint32_t, bool>> adjacency;  // (neighbour, the two must differ in flip)
-  // Vertical edges used by 4, 6, ... triangles: where columns meet along a vertical line only
-  // (height-field pixels touching diagonally, buildings touching at a corner). They link no
-  // orientation; once every triangle is oriented they must be balanced (as many traversals up as
-  // down), which keeps the surface a closed oriented cycle. Ranges [first, last) into `edges`.
-  std::vector<std::pair<std::size_t, std::size_t>> multi_edges;
+  std::vector<std::size_t> open_edges;
+  std::vector<std::pair<std::size_t, std::size_t>> multi_edges, bad_edges;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
     const DirectedEdge& e = edges[i];
-    bool ok = j - i == 2;
-    if (j - i > 2 && (j - i) % 2 == 0) {
-      const auto& te = soup.triangles[e.triangle];
-      const Vec3 &p = soup.vertices[te[e.side]], &q = soup.vertices[te[(e.side + 1) % 3]];
-      ok = p.x() == q.x() && p.y() == q.y();
-      if (ok) multi_edges.emplace_back(i, j);
-    } else if (j - i == 1) {
-      const auto& te = soup.triangles[e.triangle];
-      const double zf = state[e.component].z_min;
-      ok = soup.vertices[te[e.side]].z() == zf && soup.vertices[te[(e.side + 1) % 3]].z() == zf;
-    } else if (ok) {
+    if (j - i == 2) {
       ++adjacency_start[edges[i].triangle + 1];
       ++adjacency_start[edges[i + 1].triangle + 1];
+    } else if (j - i == 1) {
+      open_edges.push_back(i);
+    } else {
+      const auto& te = soup.triangles[e.triangle];
+      const Vec3 &p = soup.vertices[te[e.side]], &q = soup.vertices[te[(e.side + 1) % 3]];
+      if ((j - i) % 2 == 0 && p.x() == q.x() && p.y() == q.y())
+        multi_edges.emplace_back(i, j);
+      else
+        bad_edges.emplace_back(i, j);
     }
-    if (!ok) state[e.component].closed_ok = false;
     i = j;
   }
   for (std::size_t t = 0; t < nt; ++t) adjacency_start[t + 1] += adjacency_start[t];
@@ -174,111 +148,130 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       i = j;
     }
   }
-  // Orientation regions: the triangles one walk over shared edges reaches. A component is
-  // usually one region; columns touching only along vertical lines or at vertices give several,
-  // each oriented (made outward) on its own.
+  // The candidate solids are the orientation regions: the triangles one walk over linked edges
+  // reaches. Each is tested on its own — buildings of one file touching at a corner vertex, or
+  // along a vertical line, are separate solids with floors of their own, and a broken building
+  // beside them makes only itself another component.
   std::vector<std::int8_t> flip(nt, -1);
   std::vector<std::uint32_t> region(nt, UINT32_MAX);
-  std::uint32_t regions = 0;
+  std::vector<char> region_ok;
+  std::vector<double> region_z_min;
+  std::vector<Vec3> region_reference;
   {
     std::vector<std::uint32_t> queue;
     for (std::uint32_t t0 = 0; t0 < nt; ++t0) {
-      if (flip[t0] >= 0 || !state[root[t0]].closed_ok) continue;
+      if (flip[t0] >= 0 || degenerate[t0]) continue;
+      const std::uint32_t r = std::uint32_t(region_ok.size());
+      region_ok.push_back(1);
+      region_z_min.push_back(1e300);
+      region_reference.push_back(soup.vertices[soup.triangles[t0][0]]);
       flip[t0] = 0;
-      region[t0] = regions++;
+      region[t0] = r;
       queue.assign(1, t0);
       while (!queue.empty()) {
         const std::uint32_t t = queue.back();
         queue.pop_back();
+        for (std::uint32_t vi : soup.triangles[t]) region_z_min[r] = std::min(region_z_min[r], soup.vertices[vi].z());
         for (std::uint32_t k = adjacency_start[t]; k < adjacency_start[t + 1]; ++k) {
           const auto [u, differ] = adjacency[k];
           const std::int8_t want = std::int8_t(flip[t] ^ (differ ? 1 : 0));
           if (flip[u] < 0) {
             flip[u] = want;
-            region[u] = region[t];
+            region[u] = r;
             queue.push_back(u);
           } else if (flip[u] != want) {
-            state[root[t]].closed_ok = false;  // not orientable
+            region_ok[r] = 0;  // not orientable
           }
         }
       }
     }
   }
+  const std::size_t regions = region_ok.size();
+  for (const auto& [first, last] : bad_edges)
+    for (std::size_t k = first; k < last; ++k) region_ok[region[edges[k].triangle]] = 0;
   const auto winding = [&](std::uint32_t t) { return flip[t] == 1 ? -1 : 1; };
-  // The signed volume of each region relative to a point of its component's floor plane
-  // z = z_min: for a surface closed but for a floor left open (boundary edges in that plane), the
-  // volume of the solid capped there — a cap in the plane adds nothing relative to a point in it.
-  // A region is closed by itself (every paired edge joins two of its own triangles; multi-edges
-  // must be balanced within each region, below), so its volume does not depend on the reference
-  // point.
+  // The signed volume of each region relative to a point at its lowest height z_min (for a surface
+  // closed but for a floor left open there, the volume of the solid capped in that plane). Its
+  // sign orients the region outward; the method's validity does not rest on that choice (a
+  // surface oriented inside out has its roofs facing down, which lifts its floor height above
+  // them). A region is closed by itself but for its open edges (every linked edge joins two of its
+  // own triangles; multi-edges must be balanced within it, below).
   std::vector<double> region_volume6(regions, 0.0);
   for (std::uint32_t t = 0; t < nt; ++t) {
-    if (region[t] == UINT32_MAX) continue;
-    const ComponentState& s = state[root[t]];
+    if (degenerate[t]) continue;
+    const std::uint32_t r = region[t];
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    const Vec3 r(s.reference.x(), s.reference.y(), s.z_min);
-    region_volume6[region[t]] += winding(t) * (a - r).dot((b - r).cross(c - r));
+    const Vec3 ref(region_reference[r].x(), region_reference[r].y(), region_z_min[r]);
+    region_volume6[r] += winding(t) * (a - ref).dot((b - ref).cross(c - ref));
   }
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (region[t] != UINT32_MAX && region_volume6[region[t]] == 0) state[root[t]].closed_ok = false;
+  for (std::size_t r = 0; r < regions; ++r)
+    if (region_volume6[r] == 0) region_ok[r] = 0;
   // +1 where the oriented winding of t is outward.
   const auto outward = [&](std::uint32_t t) { return winding(t) * (region_volume6[region[t]] > 0 ? 1 : -1); };
   // Multi-edges: balanced within each region once oriented outward (so that every region is a
   // closed oriented surface by itself).
   for (const auto& [first, last] : multi_edges) {
-    const DirectedEdge& e = edges[first];
-    if (!state[e.component].closed_ok) continue;
     for (std::size_t k = first; k < last; ++k) {
+      const std::uint32_t r = region[edges[k].triangle];
       int balance = 0;
       for (std::size_t m = first; m < last; ++m)
-        if (region[edges[m].triangle] == region[edges[k].triangle])
-          balance += (edges[m].forward ? 1 : -1) * outward(edges[m].triangle);
-      if (balance != 0) state[e.component].closed_ok = false;
+        if (region[edges[m].triangle] == r) balance += (edges[m].forward ? 1 : -1) * outward(edges[m].triangle);
+      if (balance != 0) region_ok[r] = 0;
     }
   }
-
-  // Down-facing triangles (outward normal below the horizontal) must lie in the floor plane.
-  std::vector<char> column(nt, 0);
-  for (std::uint32_t t = 0; t < nt; ++t)
-    if (root[t] == t) column[t] = state[t].closed_ok;
+  // The floor height of each region: the highest vertex of its down-facing triangles (outward
+  // normal below the horizontal, exact xy orientation) and of its open edges. Above it the surface
+  // has no boundary and only up-facing or vertical triangles, so going up a vertical line the
+  // winding number never rises there (docs/geometry.md, "Exact horizon"). A building on a flat
+  // floor has its floor plane, one on a floor following the terrain the top of that floor; an
+  // overhang's soffit or a roof left open lifts it to their height.
+  std::vector<double> region_floor(region_z_min);
+  const auto raise_floor = [&](std::uint32_t t, const Vec3& v) {
+    double& f = region_floor[region[t]];
+    f = std::max(f, v.z());
+  };
+  for (const std::size_t i : open_edges) {
+    const DirectedEdge& e = edges[i];
+    const auto& te = soup.triangles[e.triangle];
+    raise_floor(e.triangle, soup.vertices[te[e.side]]);
+    raise_floor(e.triangle, soup.vertices[te[(e.side + 1) % 3]]);
+  }
   for (std::uint32_t t = 0; t < nt; ++t) {
-    const std::uint32_t r = root[t];
-    if (!column[r]) continue;
+    if (degenerate[t] || !region_ok[region[t]]) continue;
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    const int up = exact_orient2d_sign(a, b, c) * outward(t);
-    const double zf = state[r].z_min;
-    if (up < 0 && !(a.z() == zf && b.z() == zf && c.z() == zf)) column[r] = 0;
+    if (exact_orient2d_sign(a, b, c) * outward(t) < 0)
+      for (const Vec3* v : {&a, &b, &c}) raise_floor(t, *v);
   }
+  const auto column = [&](std::uint32_t t) { return !degenerate[t] && region_ok[region[t]]; };
 
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    const std::uint32_t r = root[t];
-    if (r == t) {
-      if (column[r]) {
-        ++out.column_solids;
-        out.max_column_floor_z = std::max(out.max_column_floor_z, state[r].z_min);
-        out.min_column_floor_z = std::min(out.min_column_floor_z, state[r].z_min);
-      } else {
-        ++out.other_components;
-      }
+  for (std::size_t r = 0; r < regions; ++r) {
+    if (region_ok[r]) {
+      ++out.column_solids;
+      out.max_column_floor_z = std::max(out.max_column_floor_z, region_floor[r]);
+      out.min_column_floor_z = std::min(out.min_column_floor_z, region_floor[r]);
+    } else {
+      ++out.other_components;
     }
-    if (!column[r])
-      for (std::uint32_t vi : soup.triangles[t]) out.max_other_z = std::max(out.max_other_z, soup.vertices[vi].z());
   }
+  for (std::uint32_t t = 0; t < nt; ++t)
+    if (!degenerate[t] && !column(t))
+      for (std::uint32_t vi : soup.triangles[t]) out.max_other_z = std::max(out.max_other_z, soup.vertices[vi].z());
 
-  // Silhouette candidates (the two triangles of each edge of a closed column solid are
-  // consecutive after the sort).
+  // Silhouette candidates: the edges of column solids in two triangles (consecutive after the
+  // sort), and their open edges (in one: a boundary can always carry the highest point; such an
+  // edge lies at or below its solid's floor height, so only points the method declines for that
+  // solid see it above their horizontal — which is what it is there for). Vertical multi-edges
+  // have no azimuth range.
   std::vector<std::uint32_t> edge_solid;
   std::vector<Candidate> candidates;
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-    const DirectedEdge &e = edges[i], &f = edges[i + 1];
-    if (e.lo != f.lo || e.hi != f.hi || !column[e.component]) continue;
-    ++i;
-    if (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) {  // a vertical multi-edge
-      while (i + 1 < edges.size() && edges[i + 1].lo == e.lo && edges[i + 1].hi == e.hi) ++i;
-      continue;
-    }
+  for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+    j = i + 1;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    if (j - i > 2 || !column(edges[i].triangle)) continue;
+    const bool open = j - i == 1;
+    const DirectedEdge &e = edges[i], &f = edges[open ? i : i + 1];
     const auto& te = soup.triangles[e.triangle];
     const auto& tf = soup.triangles[f.triangle];
     Candidate candidate;
@@ -291,12 +284,12 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     s.b = e.forward ? e1 : e0;
     if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
     if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
-    s.floor_z = state[e.component].z_min;
+    s.floor_z = region_floor[region[e.triangle]];
     c3[0] = soup.vertices[te[(e.side + 2) % 3]];
     c3[1] = soup.vertices[tf[(f.side + 2) % 3]];
     // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):
     // never a silhouette. (Coplanar on the same side is a zero-thickness fin: kept.)
-    if (exact_orientation(s.a, s.b, c3[0], c3[1]) == 0 && opposite_sides_in_plane(s.a, s.b, c3[0], c3[1])) continue;
+    if (!open && exact_orientation(s.a, s.b, c3[0], c3[1]) == 0 && opposite_sides_in_plane(s.a, s.b, c3[0], c3[1])) continue;
     // det[a − p, b − p, c − p] is the triangle's orientation when (a, b, c) follows its winding
     // (e.forward for e; f traverses the edge the other way), and is negative when p is on the
     // winding normal's side; the outward sign turns that into "front-facing".
@@ -305,6 +298,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     const bool e_forward = e.forward != (flip[e.triangle] == 1), f_forward = f.forward != (flip[f.triangle] == 1);
     s.facing_sign[0] = std::int8_t(-out_sign * (e_forward ? 1 : -1));
     s.facing_sign[1] = std::int8_t(-out_sign * (f_forward ? 1 : -1));
+    if (open) s.facing_sign[1] = std::int8_t(-s.facing_sign[0]);  // one face: never both facing one way
     for (int k = 0; k < 2; ++k) {
       const Vec3& c = c3[k];
       s.face_kind[k] = SilhouetteEdge::kGeneral;
@@ -326,7 +320,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       }
     }
     candidates.push_back(candidate);
-    edge_solid.push_back(e.component);
+    edge_solid.push_back(region[e.triangle]);
   }
   // Candidates continued by a collinear one at an end (exact collinearity of the three points).
   {
@@ -358,7 +352,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
 
   // The other components' triangles, with a median-split BVH (leaves of ≤ 4 triangles).
   for (std::uint32_t t = 0; t < nt; ++t)
-    if (!column[root[t]]) out.other_triangles.push_back(t);
+    if (!degenerate[t] && !column(t)) out.other_triangles.push_back(t);
   build_triangle_bvh(soup, out.other_triangles, out.other_nodes);
   return out;
 }

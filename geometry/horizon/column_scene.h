@@ -2,27 +2,25 @@
 // Is the scene, seen from a point, a "column scene" — one where the exact horizon method
 // (geometry/horizon/horizon_svf.h) is valid?
 //
-// A connected component of the triangle soup (triangles linked through exactly equal vertex
-// positions) is a *column solid* when
-//   1. it is a closed, consistently oriented surface: every edge belongs to exactly two of its
-//      triangles, traversed in opposite directions (or to one, when the edge lies in the floor
-//      plane: a floor left open), and no triangle repeats a vertex. A vertical edge may belong to
-//      4, 6, ... triangles (columns meeting along a vertical line only: height-field pixels
-//      touching diagonally, buildings touching at a corner) when it is traversed as often up as
-//      down. The triangles reached from one another over two-triangle edges form an
-//      orientation region, made outward by the sign of its own signed volume; a multi-edge must
-//      be balanced within each region (every region a closed surface by itself);
-//   2. with its orientation made outward, every triangle facing down (exact xy-orientation
-//      predicate) lies in the plane z = z_floor, the component's lowest z.
-// Going up a vertical line, the winding number of such a surface can only rise at z_floor and
-// then never rises again, so the solid meets every vertical line in one segment that starts at
-// its floor: a building extruded from its footprint (flat or pitched roofs, any footprint, with
-// courtyards) is one; an overhang, a bridge or a floating box is not.
+// The candidates are the soup's surfaces: triangles linked through edges in exactly two triangles
+// (exactly equal vertex positions). A surface is a *column solid* when
+//   1. no edge of it lies in three triangles, or in four or more unless vertical and traversed as
+//      often up as down once oriented (columns meeting along a vertical line only: height-field
+//      pixels touching diagonally, buildings touching at a corner); edges in one triangle are open;
+//   2. it is orientable (the files' windings need not agree), with a non-zero signed volume whose
+//      sign makes the orientation outward.
+// Its *floor height* is the highest vertex of its down-facing triangles (exact xy-orientation
+// predicate) and of its open edges: the floor plane of a building on a flat floor, modelled or
+// left open; the top of a floor following the terrain; the underside of an overhang. Above it the
+// surface, capped below it, has only up-facing and vertical triangles, so going up a vertical line
+// its winding number never rises there: a building extruded from its footprint (flat or pitched
+// roofs, any footprint, with courtyards) is one with its floor as the floor height.
+// Triangles repeating a vertex are left out (no area, nothing added to any boundary).
 //
-// From a point P outside every column solid with z_P ≥ the floor of every column solid it sees, and
-// every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is occluded
-// exactly when it lies below the highest scene point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is bounded by a
-// horizon function of azimuth alone.
+// From a point P outside every column solid with z_P ≥ the floor height of every column solid it
+// sees, and every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is
+// occluded exactly when it lies below the highest scene point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is
+// bounded by a horizon function of azimuth alone.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -44,7 +42,7 @@ namespace skyband {
 struct alignas(64) SilhouetteEdge {
   enum Kind : std::int8_t { kGeneral = 0, kHorizontal = 1, kVertical = 2 };
   Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
-  double floor_z;  // metres, the floor of its column solid
+  double floor_z;  // metres, the floor height of its column solid
   std::int8_t facing_sign[2];
   std::int8_t face_kind[2];
   std::int8_t kind_sign[2];
@@ -52,16 +50,17 @@ struct alignas(64) SilhouetteEdge {
 static_assert(sizeof(SilhouetteEdge) == 64);
 
 struct ColumnScene {
-  std::size_t column_solids = 0;
-  std::size_t other_components = 0;                                      // open, non-manifold, overhanging, ... components
-  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres
+  std::size_t column_solids = 0;     // surfaces (triangles linked through two-triangle edges) that are column solids
+  std::size_t other_components = 0;  // surfaces that are not column solids (non-manifold, not orientable, flat)
+  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres, floor heights
   double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres
   double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
 
-  // Silhouette candidates: the edges of column solids whose two faces are not coplanar, not
-  // vertical (their ends differ in x or y) and not wholly at or below the lowest column floor
-  // (a point that high sees them at or below its horizon; a point lower than every floor sees
-  // the solids' upper edges, and the method declines it), in the order of `edge_nodes`' leaves.
+  // Silhouette candidates: the edges of column solids whose two faces are not coplanar, and their
+  // open edges (one face, stored twice with opposite facing signs: never skipped), not vertical
+  // (their ends differ in x or y) and not wholly at or below min_column_floor_z (the method
+  // declines points lower than that; higher ones see them at or below their horizon), in the
+  // order of `edge_nodes`' leaves.
   std::vector<SilhouetteEdge> edges;
   std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
   std::vector<BvhNode> edge_nodes;                       // node 0 the root; children of an inner node at first, first + 1

@@ -240,6 +240,9 @@ struct HorizonSvf::Impl {
       env.clear_raised();
     }
 
+    // Below every column solid's floor height: declined at once (and the candidates wholly at or
+    // below the lowest floor height are left out of the classification).
+    if (columns.column_solids > 0 && p.z() < columns.min_column_floor_z) return false;
     if (under_a_triangle()) return false;
     // The silhouette candidates, the node that can rise highest first.
     if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(k); })) return false;

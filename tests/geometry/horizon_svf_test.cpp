@@ -91,7 +91,8 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
 
   // Four walls and a roof, no floor (the boundary lies in the floor plane: the solid capped there),
   // with one wall wound the other way (windings are made consistent, not read): a column solid;
-  // without a wall instead (the boundary rises above the floor): not one.
+  // without a wall instead the boundary rises to the roof: a column solid only for points at or
+  // above that height (its floor height is the highest point of its open edges).
   TriangleSoup floorless = box;
   floorless.triangles.erase(floorless.triangles.begin(), floorless.triangles.begin() + 2);
   std::swap(floorless.triangles[2][1], floorless.triangles[2][2]);
@@ -101,7 +102,9 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
   BOOST_TEST(c.edges.size() == 4u);
   TriangleSoup wall_missing = floorless;
   wall_missing.triangles.erase(wall_missing.triangles.begin() + 2, wall_missing.triangles.begin() + 4);
-  BOOST_TEST(classify_column_scene(wall_missing).column_solids == 0u);
+  c = classify_column_scene(wall_missing);
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.max_column_floor_z == 5.0);
 
   // A box floating above a grounded one: both column solids, floors 0 and 4.
   TriangleSoup two = box;
@@ -112,14 +115,33 @@ BOOST_AUTO_TEST_CASE(classification_of_components) {
   BOOST_TEST(c.max_column_floor_z == 4.0);
   BOOST_TEST(c.edges.size() == 12u);  // 4 roof edges each, and the floating floor's 4
 
-  // An open box (roof removed): not a column solid; valid only above its highest vertex.
+  // An open box (roof removed): its open edges reach 5 m, so it is a column solid only from there
+  // up. Two fins on one of its top edges (three triangles on one edge) make it other components,
+  // valid only above their highest vertex.
   TriangleSoup open = box;
   open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);
-  TriangleSoup open_only = open;
-  c = classify_column_scene(open_only);
-  BOOST_TEST(c.column_solids + c.other_components == 1u);
+  c = classify_column_scene(open);
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.max_column_floor_z == 5.0);
+  TriangleSoup finned = open;
+  {
+    std::uint32_t top[2], n = 0;  // the edge at z = 5 of a wall triangle of the open box
+    for (const auto& t : finned.triangles) {
+      n = 0;
+      for (std::uint32_t v : t)
+        if (finned.vertices[v].z() == 5.0) top[n++] = v;
+      if (n == 2) break;
+    }
+    BOOST_TEST_REQUIRE(n == 2u);
+    for (const Vec3& apex : {Vec3(1, 1.5, 8), Vec3(1.2, 1.4, 7)}) {  // two fins: the edge in three triangles
+      finned.vertices.push_back(apex);
+      finned.triangles.push_back({top[0], top[1], std::uint32_t(finned.vertices.size() - 1)});
+    }
+  }
+  c = classify_column_scene(finned);
   BOOST_TEST(c.column_solids == 0u);
-  BOOST_TEST(c.max_other_z == 5.0);
+  BOOST_TEST(c.other_components == 3u);  // the open box and each fin
+  BOOST_TEST(c.max_other_z == 8.0);
 
   // An overhang: a T-shaped solid (a slab on a post) faces down above its floor.
   TriangleSoup t_shape;
@@ -356,21 +378,29 @@ BOOST_AUTO_TEST_CASE(irradiance_over_the_visible_fan) {
 }
 
 BOOST_AUTO_TEST_CASE(other_components_hidden_behind_column_solids_do_not_matter) {
-  // A long tall wall (a column solid) and, behind it, an open box (its roof removed: not a column
-  // solid) lower than the wall: from in front of the wall the open box is wholly below the
-  // horizon the wall makes, so the method is valid there and exact (union oracle); from behind
-  // the wall, where the open box shows, it declines (and the band method runs).
+  // A long tall wall (a column solid) and, behind it, lower than the wall, an open box (its roof
+  // removed: a column solid only from 10 m up, the top of its open edges) and two boxes sharing a
+  // wall modelled twice (four triangles on its horizontal edges: other components): from in front
+  // of the wall both are wholly below the horizon the wall makes, so the method is valid there and
+  // exact (union oracle); from behind the wall, where they show, it declines (and the exact union
+  // runs).
   TriangleSoup soup;
   append_box(soup, Vec3(-200, 0, 0), Vec3(200, 2, 30));
   TriangleSoup open;
   append_box(open, Vec3(-5, 20, 0), Vec3(5, 30, 10));
   open.triangles.erase(open.triangles.begin() + 2, open.triangles.begin() + 4);  // as in classification_of_components
   soup.append(open);
+  append_box(soup, Vec3(20, 20, 0), Vec3(25, 25, 12));
+  append_box(soup, Vec3(25, 20, 0), Vec3(30, 25, 12));
   const Scene scene(soup);
   const ColumnScene& c = scene.column_scene();
-  BOOST_TEST(c.column_solids == 1u);
-  BOOST_TEST(c.other_components == 1u);
+  BOOST_TEST(c.column_solids == 2u);
+  BOOST_TEST(c.max_column_floor_z == 10.0);
+  // Each box's five other faces, and each of the four triangles of the wall modelled twice (its
+  // diagonal too is in four triangles, so nothing links them).
+  BOOST_TEST(c.other_components == 6u);
   BOOST_TEST(!c.valid_from_height(0.0));
+  BOOST_TEST(c.max_other_z == 12.0);
   HorizonSvf h(scene, c, 1e-6);
   SkyFactors f;
   for (const QueryPoint& q : {QueryPoint{Vec3(0, -10, 0), Vec3(0, 0, 1)}, QueryPoint{Vec3(3, -1, 4), Vec3(0, -1, 0)},
@@ -379,13 +409,20 @@ BOOST_AUTO_TEST_CASE(other_components_hidden_behind_column_solids_do_not_matter)
     const double exact = svf_union_oracle(q.position + 1e-6 * q.normal, q.normal, soup);
     BOOST_TEST(std::abs(f.svf - exact) < kExact, "horizon " << f.svf << " exact " << exact);
   }
-  BOOST_TEST(!h.compute(QueryPoint{Vec3(0, 15, 0), Vec3(0, 0, 1)}, f));  // sees the open box
-  const std::vector<QueryPoint> pts = {{Vec3(0, -10, 0), Vec3(0, 0, 1)}, {Vec3(0, 15, 0), Vec3(0, 0, 1)}};
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(0, 15, 0), Vec3(0, 0, 1)}, f));    // sees the open box (below its floor height)
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(25, 15, 0), Vec3(0, 0, 1)}, f));   // sees the boxes with the shared wall
+  BOOST_TEST(!h.compute(QueryPoint{Vec3(25, 15, 11), Vec3(0, 0, 1)}, f));  // above the open box, below the others' top
+  const std::vector<QueryPoint> pts = {{Vec3(0, -10, 0), Vec3(0, 0, 1)},
+                                       {Vec3(0, 15, 0), Vec3(0, 0, 1)},
+                                       {Vec3(25, 15, 0), Vec3(0, 0, 1)},
+                                       {Vec3(-20, 25, 10), Vec3(0, 0, 1)}};  // level with the open box's top, beside it
   const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
   BOOST_TEST(run.by_horizon == 1u);
-  BOOST_TEST(run.by_exact == 1u);
-  const double exact = svf_union_oracle(pts[1].position + 1e-6 * pts[1].normal, pts[1].normal, soup);
-  BOOST_TEST(std::abs(run.factors[1].svf - exact) < kExact);
+  BOOST_TEST(run.by_exact == 3u);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double exact = svf_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
+    BOOST_TEST(std::abs(run.factors[i].svf - exact) < kExact, "point " << i);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(floorless_boxes_with_random_windings_on_a_ground) {
@@ -424,7 +461,7 @@ BOOST_AUTO_TEST_CASE(columns_touching_along_a_vertical_edge_or_a_vertex) {
   for (auto& t : inward.triangles) std::swap(t[1], t[2]);
   soup.append(inward);
   const Scene scene(soup);
-  BOOST_TEST(scene.column_scene().column_solids == 1u);
+  BOOST_TEST(scene.column_scene().column_solids == 3u);  // each box its own closed surface
   BOOST_TEST(scene.column_scene().other_components == 0u);
   // Points around them (outside the footprints), the horizon method against the union oracle.
   std::vector<QueryPoint> pts;
@@ -453,4 +490,55 @@ BOOST_AUTO_TEST_CASE(columns_touching_along_a_vertical_edge_or_a_vertex) {
   append_box(party, Vec3(0, 0, 0), Vec3(1, 1, 4));
   append_box(party, Vec3(1, 0, 0), Vec3(2, 1, 4));
   BOOST_TEST(classify_column_scene(party).column_solids == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(a_floor_following_the_terrain_and_a_broken_neighbour_at_a_corner) {
+  // A box whose floor follows a slope (its vertices at x = 10 lifted to 0.3 m: the floor one tilted
+  // plane facing down): a column solid whose floor height is 0.3 m. Touching it at the vertex
+  // (0, 0, 0), a box with two fins on a roof edge (that edge in three triangles: other
+  // components). The first box is a column solid of its own: points at or above 0.3 m that do not
+  // see the broken box go by the exact horizon, points below 0.3 m that see the first box, and
+  // points that see the broken one, are declined (union oracle for all of them).
+  TriangleSoup soup;
+  append_box(soup, Vec3(0, 0, 0), Vec3(10, 8, 12));
+  for (Vec3& v : soup.vertices)
+    if (v.x() == 10 && v.z() == 0) v.z() = 0.3;
+  TriangleSoup broken;
+  append_box(broken, Vec3(-6, -5, 0), Vec3(0, 0, 6));
+  const auto corner = [&](const Vec3& v) {
+    return std::uint32_t(std::find(broken.vertices.begin(), broken.vertices.end(), v) - broken.vertices.begin());
+  };
+  const std::uint32_t a = corner(Vec3(0, 0, 6)), b = corner(Vec3(0, -5, 6));  // a roof edge
+  BOOST_TEST_REQUIRE((a < 8 && b < 8));
+  for (const Vec3& apex : {Vec3(-1, -2, 9), Vec3(-2, -3, 8)}) {
+    broken.vertices.push_back(apex);
+    broken.triangles.push_back({a, b, std::uint32_t(broken.vertices.size() - 1)});
+  }
+  soup.append(broken);
+  const Scene scene(soup);
+  const ColumnScene& c = scene.column_scene();
+  BOOST_TEST(c.column_solids == 1u);
+  BOOST_TEST(c.other_components == 3u);  // the broken box and each fin
+  BOOST_TEST(c.min_column_floor_z == 0.3);
+  BOOST_TEST(c.max_other_z == 9.0);
+
+  HorizonSvf h(scene, c, 1e-6);
+  SkyFactors f;
+  const QueryPoint beyond{Vec3(14, 4, 0.35), Vec3(0, 0, 1)};  // the broken box hidden behind the first
+  const QueryPoint wall{Vec3(10.1, 2, 3), Vec3(1, 0, 0)};     // on the first box's far wall
+  const QueryPoint low{Vec3(14, 4, 0.2), Vec3(0, 0, 1)};      // below its floor height
+  const QueryPoint seeing_broken{Vec3(-20, -20, 0.5), Vec3(0, 0, 1)};
+  BOOST_TEST(h.compute(beyond, f));
+  BOOST_TEST(h.compute(wall, f));
+  BOOST_TEST(!h.compute(low, f));
+  BOOST_TEST(!h.compute(seeing_broken, f));
+  const std::vector<QueryPoint> pts = {beyond, wall, low, seeing_broken, {Vec3(13, 6, 2), unit_normal(0.4, 0.3)}};
+  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+  BOOST_TEST(run.by_horizon == 3u);  // beyond, wall and the last
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
+    BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact,
+               "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
+    BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < kExact, "point " << i);
+  }
 }
