@@ -38,6 +38,24 @@ bool opposite_sides_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sc * sd < 0;
 }
 
+// Does the xy projection of segment (a, b) without its end points meet that of triangle (p, q, w)
+// (closed)? The triangle is not degenerate in xy. Exact: two convex sets are disjoint exactly when
+// a line parallel to an edge of one of them separates them (the triangle's three edges, with the
+// open segment on the line or beyond it; the segment's line, with the triangle strictly on one
+// side); a segment lying on an edge's line counts as meeting. The end points are left out: a
+// highest point there is seen in one azimuth only, a set of measure zero.
+bool xy_open_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& w) {
+  const std::array<const Vec3*, 3> v{&p, &q, &w};
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 &u = *v[i], &x = *v[(i + 1) % 3], &y = *v[(i + 2) % 3];
+    const int inside = exact_orient2d_sign(u, x, y);
+    const int sa = exact_orient2d_sign(u, x, a), sb = exact_orient2d_sign(u, x, b);
+    if (sa != inside && sb != inside && (sa != 0 || sb != 0)) return false;
+  }
+  const int sp = exact_orient2d_sign(a, b, p), sq = exact_orient2d_sign(a, b, q), sw = exact_orient2d_sign(a, b, w);
+  return !((sp > 0 && sq > 0 && sw > 0) || (sp < 0 && sq < 0 && sw < 0));
+}
+
 struct Candidate {
   SilhouetteEdge edge;
   std::array<Vec3, 2> c;  // the faces' third vertices
@@ -220,29 +238,30 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       if (balance != 0) region_ok[r] = 0;
     }
   }
-  // The floor height of each region: the highest vertex of its down-facing triangles (outward
-  // normal below the horizontal, exact xy orientation) and of its open edges. Above it the surface
-  // has no boundary and only up-facing or vertical triangles, so going up a vertical line the
-  // winding number never rises there (docs/geometry.md, "Exact horizon"). A building on a flat
-  // floor has its floor plane, one on a floor following the terrain the top of that floor; an
-  // overhang's soffit or a roof left open lifts it to their height.
-  std::vector<double> region_floor(region_z_min);
-  const auto raise_floor = [&](std::uint32_t t, const Vec3& v) {
-    double& f = region_floor[region[t]];
-    f = std::max(f, v.z());
-  };
+  // Floor heights. A region's base floor is its lowest height raised to the highest end of its
+  // open edges (their cap lies below it). Its down-facing triangles (outward normal below the
+  // horizontal, exact xy orientation) above the base floor — soffits of overhangs, outward leans —
+  // raise the floor height only of the edges whose xy projection meets theirs: going up a
+  // vertical line that meets none of them above a point's height, the winding number never rises
+  // there (docs/geometry.md, "Exact horizon"). The region's floor height is the highest of them.
+  std::vector<double> base_floor(region_z_min);
   for (const std::size_t i : open_edges) {
     const DirectedEdge& e = edges[i];
     const auto& te = soup.triangles[e.triangle];
-    raise_floor(e.triangle, soup.vertices[te[e.side]]);
-    raise_floor(e.triangle, soup.vertices[te[(e.side + 1) % 3]]);
+    double& f = base_floor[region[e.triangle]];
+    f = std::max({f, soup.vertices[te[e.side]].z(), soup.vertices[te[(e.side + 1) % 3]].z()});
   }
+  std::vector<double> region_floor(base_floor);
+  std::vector<std::uint32_t> raised;  // down-facing triangles above their region's base floor
   for (std::uint32_t t = 0; t < nt; ++t) {
     if (degenerate[t] || !region_ok[region[t]]) continue;
     const auto& tri = soup.triangles[t];
     const Vec3 &a = soup.vertices[tri[0]], &b = soup.vertices[tri[1]], &c = soup.vertices[tri[2]];
-    if (exact_orient2d_sign(a, b, c) * outward(t) < 0)
-      for (const Vec3* v : {&a, &b, &c}) raise_floor(t, *v);
+    if (exact_orient2d_sign(a, b, c) * outward(t) >= 0) continue;
+    const double top = std::max({a.z(), b.z(), c.z()});
+    if (top <= base_floor[region[t]]) continue;
+    raised.push_back(t);
+    region_floor[region[t]] = std::max(region_floor[region[t]], top);
   }
   const auto column = [&](std::uint32_t t) { return !degenerate[t] && region_ok[region[t]]; };
 
@@ -250,7 +269,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     if (region_ok[r]) {
       ++out.column_solids;
       out.max_column_floor_z = std::max(out.max_column_floor_z, region_floor[r]);
-      out.min_column_floor_z = std::min(out.min_column_floor_z, region_floor[r]);
+      out.min_column_floor_z = std::min(out.min_column_floor_z, base_floor[r]);
     } else {
       ++out.other_components;
     }
@@ -258,6 +277,53 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   for (std::uint32_t t = 0; t < nt; ++t)
     if (!degenerate[t] && !column(t))
       for (std::uint32_t vi : soup.triangles[t]) out.max_other_z = std::max(out.max_other_z, soup.vertices[vi].z());
+
+  // The floor height of a candidate edge (a, b) of region r: its base floor, raised by the raised
+  // triangles of r whose xy projection meets the edge's without its end points (exact), found
+  // through a BVH.
+  std::vector<BvhNode> raised_nodes;
+  {
+    std::vector<Aabb> boxes(raised.size());
+    std::vector<std::uint32_t> groups(raised.size());
+    for (std::size_t k = 0; k < raised.size(); ++k) {
+      for (std::uint32_t vi : soup.triangles[raised[k]]) boxes[k].extend(soup.vertices[vi]);
+      groups[k] = region[raised[k]];
+    }
+    const std::vector<std::uint32_t> order =
+        build_grouped_bvh(boxes, groups, 4, 4, raised_nodes, [](std::uint32_t, std::uint32_t, std::vector<std::uint32_t>&) {});
+    std::vector<std::uint32_t> sorted(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = raised[order[k]];
+    raised.swap(sorted);
+  }
+  std::vector<std::uint32_t> raised_stack;
+  const auto edge_floor = [&](std::uint32_t r, const Vec3& a, const Vec3& b) {
+    double floor = base_floor[r];
+    if (raised_nodes.empty() || region_floor[r] == floor) return floor;
+    const double x0 = std::min(a.x(), b.x()), x1 = std::max(a.x(), b.x());
+    const double y0 = std::min(a.y(), b.y()), y1 = std::max(a.y(), b.y());
+    raised_stack.assign(1, 0);
+    while (!raised_stack.empty()) {
+      const BvhNode& node = raised_nodes[raised_stack.back()];
+      raised_stack.pop_back();
+      if (node.box.lo.x() > x1 || node.box.hi.x() < x0 || node.box.lo.y() > y1 || node.box.hi.y() < y0 ||
+          node.box.hi.z() <= floor)
+        continue;
+      if (node.count == 0) {
+        raised_stack.push_back(node.first);
+        raised_stack.push_back(node.first + 1);
+        continue;
+      }
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+        const std::uint32_t t = raised[k];
+        if (region[t] != r) continue;
+        const auto& tri = soup.triangles[t];
+        const Vec3 &p = soup.vertices[tri[0]], &q = soup.vertices[tri[1]], &w = soup.vertices[tri[2]];
+        const double top = std::max({p.z(), q.z(), w.z()});
+        if (top > floor && xy_open_segment_meets_triangle(a, b, p, q, w)) floor = top;
+      }
+    }
+    return floor;
+  };
 
   // Silhouette candidates: the edges of column solids in two triangles (consecutive after the
   // sort), and their open edges (in one: a boundary can always carry the highest point; such an
@@ -284,7 +350,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     s.b = e.forward ? e1 : e0;
     if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
     if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
-    s.floor_z = region_floor[region[e.triangle]];
+    s.floor_z = edge_floor(region[e.triangle], s.a, s.b);
     c3[0] = soup.vertices[te[(e.side + 2) % 3]];
     c3[1] = soup.vertices[tf[(f.side + 2) % 3]];
     // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):

@@ -9,18 +9,20 @@
 //      pixels touching diagonally, buildings touching at a corner); edges in one triangle are open;
 //   2. it is orientable (the files' windings need not agree), with a non-zero signed volume whose
 //      sign makes the orientation outward.
-// Its *floor height* is the highest vertex of its down-facing triangles (exact xy-orientation
-// predicate) and of its open edges: the floor plane of a building on a flat floor, modelled or
-// left open; the top of a floor following the terrain; the underside of an overhang. Above it the
-// surface, capped below it, has only up-facing and vertical triangles, so going up a vertical line
-// its winding number never rises there: a building extruded from its footprint (flat or pitched
-// roofs, any footprint, with courtyards) is one with its floor as the floor height.
+// Its *base floor* is its lowest height raised to the highest end of its open edges (their cap
+// lies below it): the floor plane of a building on a flat floor, modelled or left open. Its
+// down-facing triangles (exact xy-orientation predicate) above that — a floor following the
+// terrain, the soffit of an overhang — raise the *floor height* of the silhouette candidates whose
+// xy projection meets theirs. Along a vertical line meeting none of them above a height, the
+// surface, capped below, has only up-facing and vertical triangles there, so going up the line
+// its winding number never rises: a building extruded from its footprint (flat or pitched roofs,
+// any footprint, with courtyards) keeps every edge at its floor.
 // Triangles repeating a vertex are left out (no area, nothing added to any boundary).
 //
-// From a point P outside every column solid with z_P ≥ the floor height of every column solid it
-// sees, and every other triangle at or below P's horizontal plane or hidden below the column solids' horizon, a sky direction is
-// occluded exactly when it lies below the highest scene point in its azimuth (docs/geometry.md, "Exact horizon"): the sky is
-// bounded by a horizon function of azimuth alone.
+// From a point P outside every column solid, at or above the floor height of every candidate that
+// is not hidden below the envelope, and every other triangle at or below P's horizontal plane or hidden below the column solids'
+// horizon, a sky direction is occluded exactly when it lies below the highest scene point in its azimuth (docs/geometry.md,
+// "Exact horizon"): the sky is bounded by a horizon function of azimuth alone.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -42,7 +44,7 @@ namespace skyband {
 struct alignas(64) SilhouetteEdge {
   enum Kind : std::int8_t { kGeneral = 0, kHorizontal = 1, kVertical = 2 };
   Vec3 a, b;       // metres; a is the end with the lower welded vertex id (canonical for both faces)
-  double floor_z;  // metres, the floor height of its column solid
+  double floor_z;  // metres, its floor height (its solid's base floor, or a soffit's top under it)
   std::int8_t facing_sign[2];
   std::int8_t face_kind[2];
   std::int8_t kind_sign[2];
@@ -52,8 +54,8 @@ static_assert(sizeof(SilhouetteEdge) == 64);
 struct ColumnScene {
   std::size_t column_solids = 0;     // surfaces (triangles linked through two-triangle edges) that are column solids
   std::size_t other_components = 0;  // surfaces that are not column solids (non-manifold, not orientable, flat)
-  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres, floor heights
-  double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres
+  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres: the lowest base floor,
+  double max_column_floor_z = -std::numeric_limits<double>::infinity();  // the highest floor height
   double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
 
   // Silhouette candidates: the edges of column solids whose two faces are not coplanar, and their

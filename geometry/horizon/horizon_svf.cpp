@@ -22,6 +22,7 @@ struct HorizonSvf::Impl {
   std::vector<std::uint32_t> stack;
   std::array<std::vector<std::uint32_t>, 128> buckets;
   std::size_t edge_tests = 0;
+  std::vector<std::uint32_t> floating;  // edges above their floor height's reach: see add_edge
 
   Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
 
@@ -78,13 +79,12 @@ struct HorizonSvf::Impl {
   // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an
   // azimuth (docs/geometry.md, "Exact horizon"): an edge whose two faces are both strictly
   // front-facing, or both strictly back-facing, from p is skipped.
-  // Returns false when the edge's solid floats above p (its floor is higher): then the sky below
-  // the solid may be visible and the method is not valid (decided for every edge not culled, so
-  // a floating solid wholly hidden behind grounded ones does not matter).
+  // An edge whose floor height is above p (a solid floating above p, or an edge over an overhang's
+  // soffit) is not inserted but kept in `floating`: unless it ends hidden below the envelope, the
+  // sky below it may be visible and the method is not valid (floating_hidden). Always true.
   bool add_edge(std::uint32_t index) {
     const SilhouetteEdge& e = columns.edges[index];
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
-    if (e.floor_z > p.z()) return false;
     ++edge_tests;
     int o2 = 2;  // orient2d(a, b, p), computed once if a face is vertical
     const auto side = [&](int k) {
@@ -114,6 +114,12 @@ struct HorizonSvf::Impl {
         hi = std::min(ta, tb) + 4;
       }
       if (env.hidden_below(lo, hi, bound)) return true;
+    }
+    if (e.floor_z > p.z()) {
+      // p is below this edge's floor height: valid only if the edge ends hidden below the
+      // envelope (tested once the walk is done: it cannot carry the highest point then).
+      floating.push_back(index);
+      return true;
     }
     insert_edge(a, b, ta, tb);
     return true;
@@ -245,7 +251,14 @@ struct HorizonSvf::Impl {
     if (columns.column_solids > 0 && p.z() < columns.min_column_floor_z) return false;
     if (under_a_triangle()) return false;
     // The silhouette candidates, the node that can rise highest first.
+    floating.clear();
     if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(k); })) return false;
+    for (const std::uint32_t k : floating) {
+      Aabb box;
+      box.extend(columns.edges[k].a);
+      box.extend(columns.edges[k].b);
+      if (!node_hidden(box)) return false;
+    }
 
     if (!others_hidden()) return false;
 

@@ -45,7 +45,7 @@ class HorizonSvf {
   // Fills `out` and returns true when the method is valid for q: the scene is a column scene
   // from q's evaluated point, the point is outside every column solid (no triangle reaching above
   // it lies over it), and the normal does not face down (n_z ≥ 0). Otherwise returns false and
-  // the band method must be used.
+  // another method must be used (the dispatcher takes the exact union).
   bool compute(const QueryPoint& q, SkyFactors& out);
 
   // The visible sky of the last compute() that returned true, as a fan of spherical triangles

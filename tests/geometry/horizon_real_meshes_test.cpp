@@ -264,11 +264,12 @@ BOOST_AUTO_TEST_CASE(v405_is_a_column_scene_and_the_horizon_is_exact_around_it, 
   }
 }
 
-BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_and_is_declined, *skyband::test::needs_shared_data()) {
+BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_over_its_floor, *skyband::test::needs_shared_data()) {
   // README: a valid (closed) val3dity solid whose faces are up to 3.6 mm off their planes. After
   // triangulation some wall triangles lean outward by ~1e-3 rad: they face down above the floor
   // (an overhang of a few millimetres, real in the data), so the solid's floor height is the top of
-  // those triangles, and points below it are declined.
+  // those triangles, and the edges over them (in xy) have that floor height: street points that
+  // see one of those edges carry the highest point are declined.
   const TriangleSoup soup = load("val3dity_building_nearly-collinear.off");
   const Scene scene(soup);
   const ColumnScene& c = scene.column_scene();
@@ -297,18 +298,22 @@ BOOST_AUTO_TEST_CASE(nearly_collinear_building_leans_by_millimetres_and_is_decli
   BOOST_TEST(c.max_column_floor_z == leaning_top);
   BOOST_TEST(leaning_top > 243.0);  // above the street points below
 
-  // Street-level points are declined (and left to the exact visible sky); points above
-  // the highest vertex see the open sky: SVF 1 for a horizontal face (closed form).
+  std::size_t over_leans = 0;
+  for (const SilhouetteEdge& e : c.edges) over_leans += e.floor_z > z_floor;
+  BOOST_TEST(over_leans >= 1u);
+
+  // Street-level points: most are declined (and left to the exact visible sky), the rest go by
+  // the exact horizon; the oracle agrees with both. Points above the highest vertex see the open
+  // sky: SVF 1 for a horizontal face (closed form).
   HorizonSvf horizon(scene, c, kOffset);
   const std::vector<QueryPoint> ground = ground_grid(scene, 8, 10, 242.0);
   BOOST_TEST_REQUIRE(!ground.empty());
   SkyFactors f;
-  for (const QueryPoint& q : ground) BOOST_TEST(!horizon.compute(q, f));
   BOOST_TEST_REQUIRE(horizon.compute(QueryPoint{Vec3(765597, 328375, 247.1), Vec3(0, 0, 1)}, f));
   BOOST_TEST(f.svf == 1.0);
   const SkyFactorsRun run = compute_sky_factors(scene, ground, VisibilityOptions{}, SkyFactorsMethod::automatic, 0);
-  BOOST_TEST(run.by_horizon == 0u);
-  BOOST_TEST(run.by_exact == ground.size());
+  BOOST_TEST(run.by_exact > ground.size() / 2);
+  BOOST_TEST(run.by_horizon + run.by_exact == ground.size());
   for (std::size_t i = 0; i < ground.size(); ++i) {
     const auto exact = oracle::sky_union_oracle(ground[i].position + kOffset * ground[i].normal, ground[i].normal, scene.soup());
     BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < 1e-9);
