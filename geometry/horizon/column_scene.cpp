@@ -59,7 +59,48 @@ bool xy_open_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p,
 struct Candidate {
   SilhouetteEdge edge;
   std::array<Vec3, 2> c;  // the faces' third vertices
+  double base_floor_z = 0;
+  std::vector<RaisedPart> raised;
 };
+
+// The parameter range [t0, t1] ⊂ [0, 1] of segment a → b whose xy projection lies in that of
+// triangle (p, q, w), widened by a bound of its rounding (and 10⁻⁹) so that it holds the exact
+// range; the whole segment where that bound is not small (a segment nearly along an edge's line).
+void xy_part_in_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& w, double& t0, double& t1) {
+  constexpr double kEps = 2.3e-16;
+  t0 = 0, t1 = 1;
+  double widen = 1e-9;
+  const std::array<const Vec3*, 3> v{&p, &q, &w};
+  const auto cross = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 &u = *v[i], &x = *v[(i + 1) % 3], &y = *v[(i + 2) % 3];
+    const double ex = x.x() - u.x(), ey = x.y() - u.y();
+    const double s = cross(ex, ey, y.x() - u.x(), y.y() - u.y()) > 0 ? 1.0 : -1.0;  // the inner side
+    const double f0 = s * cross(ex, ey, a.x() - u.x(), a.y() - u.y());
+    const double f1 = s * cross(ex, ey, b.x() - u.x(), b.y() - u.y());
+    // Each product's rounding, bounded by a few units of the last place of the magnitudes.
+    const double scale = (std::abs(ex) + std::abs(ey)) *
+                         (std::abs(a.x() - u.x()) + std::abs(a.y() - u.y()) + std::abs(b.x() - u.x()) + std::abs(b.y() - u.y()));
+    const double err = 8 * kEps * scale;
+    if (f0 >= -err && f1 >= -err) continue;  // (nearly) inside this edge's half-plane all along
+    if (f0 < -err && f1 < -err) {            // outside by rounding only: the exact test said it meets
+      t0 = 0, t1 = 1;
+      return;
+    }
+    const double d = std::abs(f0 - f1);
+    const double t = f0 / (f0 - f1);
+    widen = std::max(widen, 4 * err / d + 4 * kEps);
+    if (f0 < 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
+  }
+  if (widen > 1e-3 || !(t0 <= t1 + 2 * widen)) {
+    t0 = 0, t1 = 1;
+    return;
+  }
+  t0 = std::max(0.0, t0 - widen), t1 = std::min(1.0, t1 + widen);
+}
 
 // BVH over the edges (geometry/mesh/grouped_bvh.h): leaves hold ≤ 4 edges of one solid, so a leaf's
 // box is (part of) one building's; `edges` is reordered into leaf order.
@@ -280,7 +321,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
 
   // The floor height of a candidate edge (a, b) of region r: its base floor, raised by the raised
   // triangles of r whose xy projection meets the edge's without its end points (exact), found
-  // through a BVH.
+  // through a BVH; each of them gives the part of the edge over it (`parts`).
   std::vector<BvhNode> raised_nodes;
   {
     std::vector<Aabb> boxes(raised.size());
@@ -296,8 +337,9 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     raised.swap(sorted);
   }
   std::vector<std::uint32_t> raised_stack;
-  const auto edge_floor = [&](std::uint32_t r, const Vec3& a, const Vec3& b) {
+  const auto edge_floor = [&](std::uint32_t r, const Vec3& a, const Vec3& b, std::vector<RaisedPart>& parts) {
     double floor = base_floor[r];
+    parts.clear();
     if (raised_nodes.empty() || region_floor[r] == floor) return floor;
     const double x0 = std::min(a.x(), b.x()), x1 = std::max(a.x(), b.x());
     const double y0 = std::min(a.y(), b.y()), y1 = std::max(a.y(), b.y());
@@ -306,7 +348,7 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
       const BvhNode& node = raised_nodes[raised_stack.back()];
       raised_stack.pop_back();
       if (node.box.lo.x() > x1 || node.box.hi.x() < x0 || node.box.lo.y() > y1 || node.box.hi.y() < y0 ||
-          node.box.hi.z() <= floor)
+          node.box.hi.z() <= base_floor[r])
         continue;
       if (node.count == 0) {
         raised_stack.push_back(node.first);
@@ -319,7 +361,11 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
         const auto& tri = soup.triangles[t];
         const Vec3 &p = soup.vertices[tri[0]], &q = soup.vertices[tri[1]], &w = soup.vertices[tri[2]];
         const double top = std::max({p.z(), q.z(), w.z()});
-        if (top > floor && xy_open_segment_meets_triangle(a, b, p, q, w)) floor = top;
+        if (top <= base_floor[r] || !xy_open_segment_meets_triangle(a, b, p, q, w)) continue;
+        RaisedPart part{0, 1, top};
+        xy_part_in_triangle(a, b, p, q, w, part.t0, part.t1);
+        parts.push_back(part);
+        floor = std::max(floor, top);
       }
     }
     return floor;
@@ -350,7 +396,8 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     s.b = e.forward ? e1 : e0;
     if (s.a.x() == s.b.x() && s.a.y() == s.b.y()) continue;  // vertical: no azimuth range
     if (s.a.z() <= out.min_column_floor_z && s.b.z() <= out.min_column_floor_z) continue;
-    s.floor_z = edge_floor(region[e.triangle], s.a, s.b);
+    s.floor_z = edge_floor(region[e.triangle], s.a, s.b, candidate.raised);
+    candidate.base_floor_z = base_floor[region[e.triangle]];
     c3[0] = soup.vertices[te[(e.side + 2) % 3]];
     c3[1] = soup.vertices[tf[(f.side + 2) % 3]];
     // Coplanar faces on opposite sides of the edge (a flat continuation, the same outer side):
@@ -411,9 +458,13 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
     out.split_edges = std::size_t(std::count(split.begin(), split.end(), 1));
   }
   build_edge_bvh(out, candidates, edge_solid);
+  out.raised_first.push_back(0);
   for (const Candidate& c : candidates) {
     out.edges.push_back(c.edge);
     out.edge_third_vertices.push_back(c.c);
+    out.edge_base_floor_z.push_back(c.base_floor_z);
+    out.raised_parts.insert(out.raised_parts.end(), c.raised.begin(), c.raised.end());
+    out.raised_first.push_back(std::uint32_t(out.raised_parts.size()));
   }
 
   // The other components' triangles, with a median-split BVH (leaves of ≤ 4 triangles).

@@ -12,8 +12,8 @@
 // Its *base floor* is its lowest height raised to the highest end of its open edges (their cap
 // lies below it): the floor plane of a building on a flat floor, modelled or left open. Its
 // down-facing triangles (exact xy-orientation predicate) above that — a floor following the
-// terrain, the soffit of an overhang — raise the *floor height* of the silhouette candidates whose
-// xy projection meets theirs. Along a vertical line meeting none of them above a height, the
+// terrain, the soffit of an overhang — raise the *floor height* of the parts of the silhouette
+// candidates over them (in xy). Along a vertical line meeting none of them above a height, the
 // surface, capped below, has only up-facing and vertical triangles there, so going up the line
 // its winding number never rises: a building extruded from its footprint (flat or pitched roofs,
 // any footprint, with courtyards) keeps every edge at its floor.
@@ -51,6 +51,14 @@ struct alignas(64) SilhouetteEdge {
 };
 static_assert(sizeof(SilhouetteEdge) == 64);
 
+// The part of a silhouette candidate over a down-facing triangle of its solid above the solid's
+// base floor: parameters along it from a (0) to b (1), widened to hold the exact range, and the
+// triangle's top.
+struct RaisedPart {
+  double t0, t1;
+  double floor_z;  // metres
+};
+
 struct ColumnScene {
   std::size_t column_solids = 0;     // surfaces (triangles linked through two-triangle edges) that are column solids
   std::size_t other_components = 0;  // surfaces that are not column solids (non-manifold, not orientable, flat)
@@ -66,6 +74,13 @@ struct ColumnScene {
   std::vector<SilhouetteEdge> edges;
   std::vector<std::array<Vec3, 2>> edge_third_vertices;  // edges[i]'s faces' third vertices c[0], c[1]
   std::vector<BvhNode> edge_nodes;                       // node 0 the root; children of an inner node at first, first + 1
+  // Per candidate: its solid's base floor, and its raised parts raised_parts[raised_first[i] ..
+  // raised_first[i + 1]); SilhouetteEdge::floor_z is the highest of them all. From a point below
+  // floor_z but at or above the base, the parts higher than the point wait (horizon_svf.cpp) and
+  // the rest of the edge counts.
+  std::vector<double> edge_base_floor_z;
+  std::vector<std::uint32_t> raised_first;
+  std::vector<RaisedPart> raised_parts;
   // Candidates continued by another collinear candidate at an end (faces split along the edge: a
   // wall split into a grid of cells has 11 candidates along its top where one would do).
   std::size_t split_edges = 0;

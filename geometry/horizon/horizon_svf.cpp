@@ -22,7 +22,12 @@ struct HorizonSvf::Impl {
   std::vector<std::uint32_t> stack;
   std::array<std::vector<std::uint32_t>, 128> buckets;
   std::size_t edge_tests = 0;
-  std::vector<std::uint32_t> floating;  // edges above their floor height's reach: see add_edge
+  struct FloatingPart {
+    std::uint32_t edge;
+    double t0, t1;  // along the edge from a (0) to b (1)
+  };
+  std::vector<FloatingPart> floating;              // see add_edge
+  std::vector<std::pair<double, double>> waiting;  // scratch: an edge's parts above p's reach
 
   Impl(const Scene& s, const ColumnScene& c, double off) : scene(s), columns(c), offset_m(off) {}
 
@@ -79,9 +84,10 @@ struct HorizonSvf::Impl {
   // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an
   // azimuth (docs/geometry.md, "Exact horizon"): an edge whose two faces are both strictly
   // front-facing, or both strictly back-facing, from p is skipped.
-  // An edge whose floor height is above p (a solid floating above p, or an edge over an overhang's
-  // soffit) is not inserted but kept in `floating`: unless it ends hidden below the envelope, the
-  // sky below it may be visible and the method is not valid (floating_hidden). Always true.
+  // The parts of an edge whose floor height is above p (a solid floating above p, or the part of
+  // an edge over an overhang's soffit) are not inserted but kept in `floating`: unless they end
+  // hidden below the envelope, the sky below them may be visible and the method is not valid
+  // (checked in compute). Always true.
   bool add_edge(std::uint32_t index) {
     const SilhouetteEdge& e = columns.edges[index];
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
@@ -116,9 +122,34 @@ struct HorizonSvf::Impl {
       if (env.hidden_below(lo, hi, bound)) return true;
     }
     if (e.floor_z > p.z()) {
-      // p is below this edge's floor height: valid only if the edge ends hidden below the
-      // envelope (tested once the walk is done: it cannot carry the highest point then).
-      floating.push_back(index);
+      // p is below this edge's floor height: the parts of the edge whose floor height is above p
+      // wait — valid only if they end hidden below the envelope (tested once the walk is done:
+      // they cannot carry the highest point then) — and the rest of it is inserted.
+      if (columns.edge_base_floor_z[index] > p.z()) {
+        floating.push_back({index, 0.0, 1.0});
+        return true;
+      }
+      waiting.clear();
+      for (std::uint32_t k = columns.raised_first[index]; k < columns.raised_first[index + 1]; ++k) {
+        const RaisedPart& part = columns.raised_parts[k];
+        if (part.floor_z > p.z()) waiting.push_back({part.t0, part.t1});
+      }
+      std::sort(waiting.begin(), waiting.end());
+      double from = 0;  // the edge's part from here on is still to be inserted
+      const auto insert_part = [&](double u0, double u1) {
+        if (!(u0 < u1)) return;
+        const Vec3 c = u0 == 0 ? a : a + u0 * (b - a), d = u1 == 1 ? b : a + u1 * (b - a);
+        insert_edge(c, d, u0 == 0 ? ta : diamond_angle(c.x(), c.y()), u1 == 1 ? tb : diamond_angle(d.x(), d.y()));
+      };
+      for (std::size_t k = 0; k < waiting.size();) {
+        const double w0 = waiting[k].first;
+        double w1 = waiting[k].second;
+        for (++k; k < waiting.size() && waiting[k].first <= w1; ++k) w1 = std::max(w1, waiting[k].second);
+        insert_part(from, w0);
+        floating.push_back({index, w0, w1});
+        from = std::max(from, w1);
+      }
+      insert_part(from, 1.0);
       return true;
     }
     insert_edge(a, b, ta, tb);
@@ -253,10 +284,11 @@ struct HorizonSvf::Impl {
     // The silhouette candidates, the node that can rise highest first.
     floating.clear();
     if (!walk(columns.edge_nodes, true, [&](std::uint32_t k) { return add_edge(k); })) return false;
-    for (const std::uint32_t k : floating) {
+    for (const FloatingPart& f : floating) {
+      const SilhouetteEdge& e = columns.edges[f.edge];
       Aabb box;
-      box.extend(columns.edges[k].a);
-      box.extend(columns.edges[k].b);
+      box.extend(f.t0 == 0 ? e.a : e.a + f.t0 * (e.b - e.a));
+      box.extend(f.t1 == 1 ? e.b : e.a + f.t1 * (e.b - e.a));
       if (!node_hidden(box)) return false;
     }
 

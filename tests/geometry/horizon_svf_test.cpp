@@ -547,68 +547,77 @@ BOOST_AUTO_TEST_CASE(a_floor_following_the_terrain_and_a_broken_neighbour_at_a_c
 
 BOOST_AUTO_TEST_CASE(an_overhang_raises_the_floor_height_only_of_the_edges_over_it) {
   // One closed surface: an L-shaped profile in x–z extruded along y (0 … 8 m), a block 10 m wide
-  // and 10 m high whose upper storey overhangs 4 m towards +x from 6 m up, its upper edges split
-  // at x = 10. The overhang's soffit (z = 6, x from 10 to 14) faces down: the edges whose xy
-  // projection without its ends meets it (x > 10 somewhere) have floor height 6 m, the others the
-  // floor's 0 m. From the −x side at street level the edges over the soffit are hidden behind the
-  // near roof edge: exact horizon; from under or beside the overhang they show: declined (sky below
-  // the soffit), and the exact union answers. Union oracle for all.
-  const std::array<std::array<double, 2>, 7> profile{{{0, 0}, {10, 0}, {10, 6}, {14, 6}, {14, 10}, {10, 10}, {0, 10}}};
-  TriangleSoup soup;
-  for (double y : {0.0, 8.0})
-    for (const auto& xz : profile) soup.vertices.push_back(Vec3(xz[0], y, xz[1]));
-  // The two ends (the profile cut into triangles), then a quad along each profile edge.
-  const std::vector<std::array<std::uint32_t, 3>> ends{{0, 1, 2}, {0, 2, 6}, {2, 5, 6}, {2, 3, 4}, {2, 4, 5}};
-  for (const auto& t : ends) {
-    soup.triangles.push_back({t[0], t[2], t[1]});
-    soup.triangles.push_back({t[0] + 7, t[1] + 7, t[2] + 7});
-  }
-  for (std::uint32_t i = 0; i < 7; ++i) {
-    const std::uint32_t j = (i + 1) % 7;
-    soup.triangles.push_back({i, j, j + 7});
-    soup.triangles.push_back({i, j + 7, i + 7});
-  }
-  const Scene scene(soup);
-  const ColumnScene& c = scene.column_scene();
-  BOOST_TEST(c.column_solids == 1u);
-  BOOST_TEST(c.min_column_floor_z == 0.0);
-  BOOST_TEST(c.max_column_floor_z == 6.0);
-  std::size_t over = 0;
-  for (const SilhouetteEdge& e : c.edges) {
-    const bool meets = std::max(e.a.x(), e.b.x()) > 10 || (e.a.z() == 6 && e.b.z() == 6);  // or the soffit's own edge
-    BOOST_TEST_MESSAGE("edge " << e.a.transpose() << " – " << e.b.transpose() << " floor " << e.floor_z);
-    BOOST_TEST(e.floor_z == (meets ? 6.0 : 0.0), "edge " << e.a.transpose() << " – " << e.b.transpose());
-    over += meets;
-  }
-  BOOST_TEST(over >= 3u);
+  // and 10 m high whose upper storey overhangs 4 m towards +x from 6 m up. The overhang's soffit
+  // (z = 6, x from 10 to 14) faces down: the parts of edges over it (in xy) have floor height 6 m,
+  // the rest the floor's 0 m — whole edges where the upper edges are split at x = 10, the part
+  // beyond x = 10 of the roof's and the ends' top edges where they are not. From the −x side at
+  // street level the parts over the soffit are hidden behind the near roof edge: exact horizon;
+  // from under or beside the overhang they show: declined (sky below the soffit), and the exact
+  // union answers. Union oracle for all.
+  for (const bool split : {true, false}) {
+    BOOST_TEST_CONTEXT((split ? "upper edges split at x = 10" : "upper edges whole")) {
+      std::vector<std::array<double, 2>> profile{{0, 0}, {10, 0}, {10, 6}, {14, 6}, {14, 10}, {0, 10}};
+      std::vector<std::array<std::uint32_t, 3>> ends{{0, 1, 2}, {0, 2, 5}, {2, 3, 4}, {2, 4, 5}};
+      if (split) {
+        profile.insert(profile.begin() + 5, {10, 10});
+        ends = {{0, 1, 2}, {0, 2, 6}, {2, 5, 6}, {2, 3, 4}, {2, 4, 5}};
+      }
+      const auto n = std::uint32_t(profile.size());
+      TriangleSoup soup;
+      for (double y : {0.0, 8.0})
+        for (const auto& xz : profile) soup.vertices.push_back(Vec3(xz[0], y, xz[1]));
+      // The two ends (the profile cut into triangles), then a quad along each profile edge.
+      for (const auto& t : ends) {
+        soup.triangles.push_back({t[0], t[2], t[1]});
+        soup.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
+      }
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t j = (i + 1) % n;
+        soup.triangles.push_back({i, j, j + n});
+        soup.triangles.push_back({i, j + n, i + n});
+      }
+      const Scene scene(soup);
+      const ColumnScene& c = scene.column_scene();
+      BOOST_TEST(c.column_solids == 1u);
+      BOOST_TEST(c.min_column_floor_z == 0.0);
+      BOOST_TEST(c.max_column_floor_z == 6.0);
+      std::size_t over = 0;
+      for (const SilhouetteEdge& e : c.edges) {
+        const bool meets = std::max(e.a.x(), e.b.x()) > 10 || (e.a.z() == 6 && e.b.z() == 6);  // or the soffit's own edge
+        BOOST_TEST(e.floor_z == (meets ? 6.0 : 0.0), "edge " << e.a.transpose() << " – " << e.b.transpose());
+        over += meets;
+      }
+      BOOST_TEST(over >= 3u);
 
-  HorizonSvf h(scene, c, 1e-6);
-  SkyFactors f;
-  const std::vector<QueryPoint> taken = {
-      {Vec3(-5, 4, 0.05), Vec3(0, 0, 1)}, {Vec3(-12, 5, 1), Vec3(0, 0, 1)}, {Vec3(-0.1, 2, 3), Vec3(-1, 0, 0)}};
-  const std::vector<QueryPoint> declined = {{Vec3(12, 4, 0.05), Vec3(0, 0, 1)},  // under the overhang
-                                            {Vec3(20, 4, 0.05), Vec3(0, 0, 1)},
-                                            {Vec3(10.1, 4, 3), Vec3(1, 0, 0)},
-                                            {Vec3(-12, -3, 1), Vec3(0, 0, 1)}};  // sees under it past the corner
-  for (const QueryPoint& q : taken) BOOST_TEST(h.compute(q, f), "declined at " << q.position.transpose());
-  for (const QueryPoint& q : declined) BOOST_TEST(!h.compute(q, f), "taken at " << q.position.transpose());
-  std::vector<QueryPoint> pts = taken;
-  pts.insert(pts.end(), declined.begin(), declined.end());
-  // And random points around it (outside the block and the overhang, any height up to 12 m).
-  gen::Rng rng(47);
-  while (pts.size() < taken.size() + declined.size() + 60) {
-    const Vec3 p(rng.uniform(-15, 30), rng.uniform(-10, 18), rng.uniform(0, 12));
-    const bool in_block = p.x() > -0.05 && p.x() < 10.05 && p.y() > -0.05 && p.y() < 8.05 && p.z() < 10.05;
-    const bool in_upper = p.x() > -0.05 && p.x() < 14.05 && p.y() > -0.05 && p.y() < 8.05 && p.z() > 5.95 && p.z() < 10.05;
-    if (in_block || in_upper) continue;
-    pts.push_back({p, pts.size() % 2 ? Vec3(0, 0, 1) : rng.unit_normal(0, kPi / 2, 0, 6.28)});
-  }
-  const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
-  BOOST_TEST(run.by_horizon >= taken.size() + 10);
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
-    BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact,
-               "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
-    BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < kExact, "point " << i);
+      HorizonSvf h(scene, c, 1e-6);
+      SkyFactors f;
+      const std::vector<QueryPoint> taken = {
+          {Vec3(-5, 4, 0.05), Vec3(0, 0, 1)}, {Vec3(-12, 5, 1), Vec3(0, 0, 1)}, {Vec3(-0.1, 2, 3), Vec3(-1, 0, 0)}};
+      const std::vector<QueryPoint> declined = {{Vec3(12, 4, 0.05), Vec3(0, 0, 1)},  // under the overhang
+                                                {Vec3(20, 4, 0.05), Vec3(0, 0, 1)},
+                                                {Vec3(10.1, 4, 3), Vec3(1, 0, 0)},
+                                                {Vec3(-12, -3, 1), Vec3(0, 0, 1)}};  // sees under it past the corner
+      for (const QueryPoint& q : taken) BOOST_TEST(h.compute(q, f), "declined at " << q.position.transpose());
+      for (const QueryPoint& q : declined) BOOST_TEST(!h.compute(q, f), "taken at " << q.position.transpose());
+      std::vector<QueryPoint> pts = taken;
+      pts.insert(pts.end(), declined.begin(), declined.end());
+      // And random points around it (outside the block and the overhang, any height up to 12 m).
+      gen::Rng rng(47);
+      while (pts.size() < taken.size() + declined.size() + 60) {
+        const Vec3 p(rng.uniform(-15, 30), rng.uniform(-10, 18), rng.uniform(0, 12));
+        const bool in_block = p.x() > -0.05 && p.x() < 10.05 && p.y() > -0.05 && p.y() < 8.05 && p.z() < 10.05;
+        const bool in_upper = p.x() > -0.05 && p.x() < 14.05 && p.y() > -0.05 && p.y() < 8.05 && p.z() > 5.95 && p.z() < 10.05;
+        if (in_block || in_upper) continue;
+        pts.push_back({p, pts.size() % 2 ? Vec3(0, 0, 1) : rng.unit_normal(0, kPi / 2, 0, 6.28)});
+      }
+      const SkyFactorsRun run = compute_sky_factors(scene, pts, VisibilityOptions{}, SkyFactorsMethod::automatic, 1);
+      BOOST_TEST(run.by_horizon >= taken.size() + 10);
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const UnionSkyFactors exact = sky_union_oracle(pts[i].position + 1e-6 * pts[i].normal, pts[i].normal, soup);
+        BOOST_TEST(std::abs(run.factors[i].svf - exact.svf) < kExact,
+                   "point " << i << ": " << run.factors[i].svf << " oracle " << exact.svf);
+        BOOST_TEST(std::abs(run.factors[i].sky_exposure - exact.sky_exposure) < kExact, "point " << i);
+      }
+    }
   }
 }
