@@ -84,10 +84,11 @@ struct HorizonSvf::Impl {
   // One silhouette candidate. Only silhouette edges can carry a solid's highest point in an
   // azimuth (docs/geometry.md, "Exact horizon"): an edge whose two faces are both strictly
   // front-facing, or both strictly back-facing, from p is skipped.
-  // The parts of an edge whose floor height is above p (a solid floating above p, or the part of
-  // an edge over an overhang's soffit) are not inserted but kept in `floating`: unless they end
-  // hidden below the envelope, the sky below them may be visible and the method is not valid
-  // (checked in compute). Always true.
+  // Returns false when p is below the base floor of the edge's solid (a solid floating above p, or
+  // one open above it) and the edge is not hidden: the method is not valid. The parts of an edge
+  // over a soffit higher than p are not inserted but kept in `floating`: unless they end hidden
+  // below the envelope, the sky below them may be visible and the method is not valid either
+  // (checked in compute).
   bool add_edge(std::uint32_t index) {
     const SilhouetteEdge& e = columns.edges[index];
     if (e.a.z() <= p.z() && e.b.z() <= p.z()) return true;  // at or below p's horizontal plane
@@ -125,10 +126,9 @@ struct HorizonSvf::Impl {
       // p is below this edge's floor height: the parts of the edge whose floor height is above p
       // wait — valid only if they end hidden below the envelope (tested once the walk is done:
       // they cannot carry the highest point then) — and the rest of it is inserted.
-      if (columns.edge_base_floor_z[index] > p.z()) {
-        floating.push_back({index, 0.0, 1.0});
-        return true;
-      }
+      // Below the solid's base floor (a solid floating above p, or one open above it) the method
+      // declines at once: the edge is not hidden now, and such points rarely end as a horizon.
+      if (columns.edge_base_floor_z[index] > p.z()) return false;
       waiting.clear();
       for (std::uint32_t k = columns.raised_first[index]; k < columns.raised_first[index + 1]; ++k) {
         const RaisedPart& part = columns.raised_parts[k];
