@@ -62,8 +62,8 @@ struct RaisedPart {
 struct ColumnScene {
   std::size_t column_solids = 0;     // surfaces (triangles linked through two-triangle edges) that are column solids
   std::size_t other_components = 0;  // surfaces that are not column solids (non-manifold, not orientable, flat)
-  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres: the lowest base floor,
-  double max_column_floor_z = -std::numeric_limits<double>::infinity();  // the highest floor height
+  double min_column_floor_z = std::numeric_limits<double>::infinity();   // metres, the lowest base floor
+  double max_column_floor_z = -std::numeric_limits<double>::infinity();  // metres, the highest floor height
   double max_other_z = -std::numeric_limits<double>::infinity();         // metres, any vertex of a non-column triangle
 
   // Silhouette candidates: the edges of column solids whose two faces are not coplanar, and their

@@ -277,8 +277,8 @@ struct HorizonSvf::Impl {
       env.clear_raised();
     }
 
-    // Below every column solid's floor height: declined at once (and the candidates wholly at or
-    // below the lowest floor height are left out of the classification).
+    // Below every column solid's base floor: declined at once (and the candidates wholly at or
+    // below the lowest base floor are left out of the classification).
     if (columns.column_solids > 0 && p.z() < columns.min_column_floor_z) return false;
     if (under_a_triangle()) return false;
     // The silhouette candidates, the node that can rise highest first.
