@@ -282,9 +282,9 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
   // Floor heights. A region's base floor is its lowest height raised to the highest end of its
   // open edges (their cap lies below it). Its down-facing triangles (outward normal below the
   // horizontal, exact xy orientation) above the base floor — soffits of overhangs, outward leans —
-  // raise the floor height only of the edges whose xy projection meets theirs: going up a
-  // vertical line that meets none of them above a point's height, the winding number never rises
-  // there (docs/geometry.md, "Exact horizon"). The region's floor height is the highest of them.
+  // raise the floor height only of the parts of edges over them (in xy): going up a vertical line
+  // that meets none of them above a point's height, the winding number never rises there
+  // (docs/geometry.md, "Exact horizon"). The region's floor height is the highest of them.
   std::vector<double> base_floor(region_z_min);
   for (const std::size_t i : open_edges) {
     const DirectedEdge& e = edges[i];
@@ -373,9 +373,9 @@ ColumnScene classify_column_scene(const TriangleSoup& soup) {
 
   // Silhouette candidates: the edges of column solids in two triangles (consecutive after the
   // sort), and their open edges (in one: a boundary can always carry the highest point; such an
-  // edge lies at or below its solid's floor height, so only points the method declines for that
-  // solid see it above their horizontal — which is what it is there for). Vertical multi-edges
-  // have no azimuth range.
+  // edge lies at or below its solid's base floor, so only points below it — which the method
+  // declines on reaching it — see it above their horizontal). Vertical multi-edges have no
+  // azimuth range.
   std::vector<std::uint32_t> edge_solid;
   std::vector<Candidate> candidates;
   for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {

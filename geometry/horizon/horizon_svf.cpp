@@ -315,8 +315,8 @@ struct HorizonSvf::Impl {
     // below the lowest base floor are left out of the classification).
     if (columns.column_solids > 0 && p.z() < columns.min_column_floor_z) return false;
     if (under_a_triangle()) return false;
-    // The silhouette candidates, the node that can rise highest first.
-    // The parts over a soffit higher than p left waiting: after each leaf, those now hidden are
+    // The silhouette candidates, the node that can rise highest first. The parts over a soffit
+    // higher than p left waiting (add_edge): after each leaf, those now hidden are
     // dropped, and the point is declined as soon as one is not hidden and no node still to come
     // can rise to its lowest elevation (then the envelope will not hide it: it would decline at
     // the end); the rest are tested once the walk is done.
